@@ -1,0 +1,134 @@
+"""The ``leuven-friction`` command line."""
+
+from __future__ import annotations
+
+import argparse
+import io
+import json
+import sys
+
+import numpy as np
+
+
+class UserError(Exception):
+    """A mistake of the user's: printed as one line, exit status 2."""
+
+
+def _params(path: str | None, model: str | None):
+    from identify.paramfile import load_params
+    from model import as_model, default_params
+
+    p = load_params(path) if path else default_params()
+    return as_model(p, model) if model else p
+
+
+def _frame(result_runs, labels):
+    import pandas as pd
+
+    frames = []
+    for i, (r, label) in enumerate(zip(result_runs, labels)):
+        df = pd.DataFrame(r.columns())
+        if len(result_runs) > 1:
+            df.insert(0, "run", label)
+        frames.append(df)
+    return pd.concat(frames, ignore_index=True)
+
+
+def _write_csv(df, path: str) -> None:
+    from identify.paramfile import write_atomic
+
+    buf = io.StringIO()
+    df.to_csv(buf, index=False, float_format="%.10g")
+    try:
+        write_atomic(path, buf.getvalue())
+    except OSError as e:
+        raise UserError(f"{path}: cannot write ({e.strerror})") from None
+
+
+def cmd_simulate(args) -> int:
+    from model.experiments import EXPERIMENTS, run_experiment
+    from model.simulate import simulate_displacement, simulate_force
+
+    if args.list:
+        for name, (_, text) in EXPERIMENTS.items():
+            print(f"{name:26s} {text}")
+        return 0
+    if not args.out:
+        raise UserError("simulate: --out OUT.csv is required")
+    params = _params(args.params, args.model)
+    if args.experiment:
+        if args.experiment not in EXPERIMENTS:
+            raise UserError(f"--experiment: unknown {args.experiment!r}; known: {', '.join(EXPERIMENTS)}")
+        res = run_experiment(args.experiment, params)
+        df = _frame(res.runs, res.labels)
+        _write_csv(df, args.out)
+        print(f"{args.experiment} ({params.model}): {len(df)} rows -> {args.out}")
+        return 0
+    if not args.input:
+        raise UserError("simulate: give --experiment NAME, --input REC.csv or --list")
+    from identify.data import load_recording, parse_column_mapping
+
+    cols = parse_column_mapping(args.columns)
+    need = ("time", "position") if args.drive == "displacement" else ("time", "force")
+    rec = load_recording(args.input, columns=cols, require=need)
+    if args.drive == "displacement":
+        r = simulate_displacement(params, rec.time, rec.position)
+    else:
+        r = simulate_force(params, rec.time, rec.force)
+    _write_csv(_frame([r], [params.model]), args.out)
+    print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}")
+    return 0
+
+
+def cmd_bench(args) -> int:
+    from bench.simulator import run_all
+
+    results = run_all(quick=args.quick, progress=lambda msg: print(msg, file=sys.stderr))
+    print(json.dumps(results, indent=2))
+    if args.json:
+        from identify.paramfile import write_atomic
+
+        write_atomic(args.json, json.dumps(results, indent=2) + "\n")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="leuven-friction", description="Leuven integrated friction model: simulate, fit, explore.")
+    sub = ap.add_subparsers(dest="command", required=True)
+
+    s = sub.add_parser("simulate", help="run a paper experiment or drive the model with a recording")
+    s.add_argument("--experiment", help="experiment name (see --list)")
+    s.add_argument("--list", action="store_true", help="list the experiments")
+    s.add_argument("--model", choices=["leuven", "lugre", "static"], help="model kind (default: the file's, else leuven)")
+    s.add_argument("--params", help="parameter YAML (default: the paper's KUKA IR 361 axis 1)")
+    s.add_argument("--input", help="recorded CSV to drive the model with")
+    s.add_argument("--drive", choices=["displacement", "force"], default="displacement",
+                   help="which recorded column drives the model (default: displacement)")
+    s.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau")
+    s.add_argument("--out", help="output CSV")
+    s.set_defaults(func=cmd_simulate)
+
+    b = sub.add_parser("bench", help="measure simulator (and fit) speed")
+    b.add_argument("--quick", action="store_true", help="smaller problem sizes")
+    b.add_argument("--json", help="also write the results to this JSON file")
+    b.set_defaults(func=cmd_bench)
+    return ap
+
+
+def main(argv=None) -> int:
+    from identify.data import DataError
+    from model import ParameterError
+
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except (UserError, DataError, ParameterError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

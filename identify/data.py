@@ -1,0 +1,217 @@
+"""Recorded data: CSV/TSV in, validated SI arrays out.
+
+Users name their columns in many ways and often write units in the header
+(``Position [mm]``, ``Friction (uN)``, ``Time (s)``). ``load_recording`` recognises the common
+names, accepts an explicit mapping (``{"time": "t", "position": "q", "force": "tau"}``),
+converts units to SI and says what it assumed. Every problem is a ``DataError`` whose one-line
+message names the file, the column and the row (rows are numbered as lines of the file,
+the header being line 1).
+"""
+
+from __future__ import annotations
+
+import io
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+SIGNALS = ("time", "position", "force", "velocity", "friction", "normal_load", "temperature")
+
+ALIASES = {
+    "time": ("time", "t", "timestamp", "time_s", "seconds"),
+    "position": ("position", "x", "q", "angle", "pos", "displacement", "theta", "joint_angle"),
+    "force": ("force", "torque", "applied_torque", "applied_force", "u", "tau", "motor_torque", "f"),
+    "velocity": ("velocity", "v", "speed", "qd", "omega"),
+    "friction": ("friction", "friction_force", "friction_torque", "ff"),
+    "normal_load": ("normal_load", "load", "normal_force", "fn", "n_load"),
+    "temperature": ("temperature", "temp", "t_oil", "celsius"),
+}
+
+# factor to SI, and the SI unit it lands in
+UNITS = {
+    "s": (1.0, "s"), "sec": (1.0, "s"), "ms": (1e-3, "s"), "us": (1e-6, "s"), "µs": (1e-6, "s"), "min": (60.0, "s"),
+    "m": (1.0, "m"), "mm": (1e-3, "m"), "um": (1e-6, "m"), "µm": (1e-6, "m"), "micron": (1e-6, "m"), "nm": (1e-9, "m"),
+    "rad": (1.0, "rad"), "mrad": (1e-3, "rad"), "urad": (1e-6, "rad"), "µrad": (1e-6, "rad"),
+    "deg": (np.pi / 180, "rad"), "°": (np.pi / 180, "rad"),
+    "n": (1.0, "N"), "mn": (1e-3, "N"), "un": (1e-6, "N"), "µn": (1e-6, "N"), "kn": (1e3, "N"),
+    "nm_torque": (1.0, "N*m"), "n*m": (1.0, "N*m"), "n.m": (1.0, "N*m"), "n m": (1.0, "N*m"), "mnm": (1e-3, "N*m"),
+    "m/s": (1.0, "m/s"), "mm/s": (1e-3, "m/s"), "um/s": (1e-6, "m/s"), "rad/s": (1.0, "rad/s"),
+    "deg/s": (np.pi / 180, "rad/s"), "c": (1.0, "degC"), "degc": (1.0, "degC"), "°c": (1.0, "degC"), "k": (1.0, "K"),
+}
+
+MIN_SAMPLES = 10
+
+
+class DataError(ValueError):
+    """Recorded data that cannot be used; the message names file, column and row."""
+
+
+@dataclass
+class Recording:
+    """One recording in SI units. ``force`` is the applied force (or motor torque)."""
+
+    time: np.ndarray
+    position: np.ndarray | None = None
+    force: np.ndarray | None = None
+    velocity: np.ndarray | None = None
+    friction: np.ndarray | None = None
+    normal_load: np.ndarray | None = None
+    temperature: np.ndarray | None = None
+    source: str = "<memory>"
+    columns: dict = field(default_factory=dict)  # signal -> column name in the file
+    units: dict = field(default_factory=dict)  # signal -> SI unit
+    notes: list = field(default_factory=list)  # what was assumed or converted
+
+    def __len__(self) -> int:
+        return len(self.time)
+
+    def has(self, signal: str) -> bool:
+        return getattr(self, signal) is not None
+
+
+_UNIT_RE = re.compile(r"^(.*?)\s*[\[(]\s*([^\])]+?)\s*[\])]\s*$")
+
+
+def _split_header(name: str) -> tuple[str, str | None]:
+    """'Position [mm]' -> ('position', 'mm'); 'Time (s)' -> ('time', 's')."""
+    m = _UNIT_RE.match(str(name).strip())
+    base, unit = (m.group(1), m.group(2)) if m else (str(name).strip(), None)
+    key = re.sub(r"[^0-9a-zA-Z_]+", "_", base.strip().lower()).strip("_")
+    return key, unit
+
+
+def parse_column_mapping(spec: str | None) -> dict:
+    """'time=t,position=q,force=tau' -> {'time': 't', 'position': 'q', 'force': 'tau'}."""
+    if not spec:
+        return {}
+    out = {}
+    for part in spec.split(","):
+        if "=" not in part:
+            raise DataError(f"--columns: expected signal=column pairs separated by commas, got {part!r}")
+        k, v = (s.strip() for s in part.split("=", 1))
+        if k not in SIGNALS:
+            raise DataError(f"--columns: unknown signal {k!r}; known: {', '.join(SIGNALS)}")
+        out[k] = v
+    return out
+
+
+def _read_table(path: Path, text: str) -> pd.DataFrame:
+    first = text.splitlines()[0] if text else ""
+    sep = "\t" if first.count("\t") > max(first.count(","), 0) else ("," if "," in first else r"\s+")
+    try:
+        return pd.read_csv(io.StringIO(text), sep=sep, engine="python", comment="#", skip_blank_lines=True)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
+        msg = str(e).splitlines()[0] if str(e) else type(e).__name__
+        raise DataError(f"{path}: not a readable CSV/TSV table ({msg})") from None
+
+
+def load_recording(source, *, columns: dict | None = None, units: dict | None = None,
+                   require: tuple = ("time",), name: str | None = None) -> Recording:
+    """Read a recording from a path, or from bytes/str content (``name`` labels messages).
+
+    ``columns`` maps signals to column names; ``units`` maps signals to unit names and
+    overrides what the header says. Columns not recognised are ignored (listed in ``notes``).
+    """
+    if isinstance(source, (bytes, bytearray)):
+        label = name or "<upload>"
+        try:
+            text = bytes(source).decode("utf-8-sig")
+        except UnicodeDecodeError:
+            raise DataError(f"{label}: not a text file (could not decode as UTF-8)") from None
+        path = Path(label)
+    elif isinstance(source, str) and ("\n" in source) and name:
+        text, path = source, Path(name)
+    else:
+        path = Path(source)
+        try:
+            text = path.read_text(encoding="utf-8-sig")
+        except OSError as e:
+            raise DataError(f"{path}: cannot read ({e.strerror})") from None
+        except UnicodeDecodeError:
+            raise DataError(f"{path}: not a text file (could not decode as UTF-8)") from None
+    if not text.strip():
+        raise DataError(f"{path}: the file is empty")
+    df = _read_table(path, text)
+    if df.shape[1] == 0 or len(df) == 0:
+        raise DataError(f"{path}: no data rows under the header")
+
+    mapping = dict(columns or {})
+    headers = {str(c): _split_header(c) for c in df.columns}
+    for sig, col in mapping.items():
+        if col not in headers:
+            raise DataError(f"{path}: column {col!r} given for {sig} is not in the file (columns: {', '.join(headers)})")
+    taken = set(mapping.values())
+    for sig in SIGNALS:
+        if sig in mapping:
+            continue
+        for col, (key, _) in headers.items():
+            if col not in taken and key in ALIASES[sig]:
+                mapping[sig] = col
+                taken.add(col)
+                break
+    missing = [s for s in require if s not in mapping]
+    if missing:
+        raise DataError(
+            f"{path}: no column for {', '.join(missing)} (columns: {', '.join(headers)}; "
+            f"name them with --columns {missing[0]}=<column>)"
+        )
+
+    rec = Recording(time=np.empty(0), source=str(path))
+    notes = []
+    for sig, col in mapping.items():
+        raw = df[col]
+        values = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=np.float64)
+        bad = np.flatnonzero(~np.isfinite(values))
+        if len(bad):
+            r = int(bad[0])
+            raise DataError(
+                f"{path}: column {col!r} row {r + 2}: {str(raw.iloc[r])!r} is not a finite number"
+                + (f" ({len(bad)} such rows)" if len(bad) > 1 else "")
+            )
+        unit = (units or {}).get(sig) or headers[col][1]
+        if unit is not None and sig != "temperature":
+            key = unit.strip().lower().replace(" ", "") if unit.strip().lower() != "n m" else "n m"
+            if key == "nm" and sig in ("force", "friction"):
+                key = "nm_torque"  # 'Nm' in a force column is newton-metre, not nanometre
+            if key not in UNITS:
+                raise DataError(f"{path}: column {col!r}: unknown unit {unit!r}")
+            factor, si = UNITS[key]
+            if factor != 1.0:
+                values = values * factor
+                notes.append(f"{col}: converted from {unit} to {si}")
+            rec.units[sig] = si
+        elif sig != "temperature":
+            notes.append(f"{col}: no unit in the header, assumed SI")
+        setattr(rec, sig, values)
+        rec.columns[sig] = col
+    ignored = [c for c in headers if c not in mapping.values()]
+    if ignored:
+        notes.append(f"ignored columns: {', '.join(ignored)}")
+    rec.notes = notes
+
+    n = len(rec.time)
+    if n < MIN_SAMPLES:
+        raise DataError(f"{path}: only {n} sample(s); need at least {MIN_SAMPLES}")
+    dt = np.diff(rec.time)
+    bad = np.flatnonzero(dt <= 0)
+    if len(bad):
+        r = int(bad[0]) + 1
+        raise DataError(
+            f"{path}: column {rec.columns['time']!r} row {r + 2}: time {rec.time[r]:g} does not increase "
+            f"(previous {rec.time[r - 1]:g}); sort the file or remove repeated rows"
+        )
+    return rec
+
+
+def velocity_of(rec: Recording) -> np.ndarray:
+    """The recorded velocity, or the backward difference of the position (first sample 0)."""
+    if rec.velocity is not None:
+        return rec.velocity
+    if rec.position is None:
+        raise DataError(f"{rec.source}: neither a velocity nor a position column")
+    v = np.zeros(len(rec.time))
+    v[1:] = np.diff(rec.position) / np.diff(rec.time)
+    return v

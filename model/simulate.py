@@ -1,0 +1,167 @@
+"""The Python face of the simulator: validated inputs in, a ``SimResult`` out.
+
+Three drivers, one per way the paper drives its system:
+``simulate_displacement`` (prescribed x(t) → friction, used for feedforward and fitting),
+``simulate_force`` (prescribed applied force on I·ẍ = f - F, eq. (8)) and
+``simulate_closed_loop`` (P/PI position control with optional feedforward).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import kernels as K
+from .params import FrictionParams
+
+COLUMNS = ("time", "position", "velocity", "applied_force", "friction_force", "hysteresis_force", "z")
+MODEL_CODES = {"leuven": K.LEUVEN, "lugre": K.LUGRE, "static": K.STATIC}
+
+
+@dataclass
+class SimResult:
+    """Time series of one simulation (SI units unless the parameters say otherwise)."""
+
+    time: np.ndarray
+    position: np.ndarray
+    velocity: np.ndarray
+    applied_force: np.ndarray
+    friction_force: np.ndarray
+    hysteresis_force: np.ndarray
+    z: np.ndarray
+    model: str = "leuven"
+    memory: dict = field(default_factory=dict)
+
+    def columns(self) -> dict:
+        return {c: getattr(self, c) for c in COLUMNS}
+
+    def __len__(self) -> int:
+        return len(self.time)
+
+
+def pack(params: FrictionParams) -> tuple[int, np.ndarray, int, np.ndarray, np.ndarray]:
+    """(model code, parameter vector, transition kind, tz, tF) for ``model.kernels``."""
+    p = np.zeros(K.P_SIZE)
+    p[K.P_SP : K.P_SP + 10] = params.stribeck.as_array()
+    p[K.P_N] = params.n
+    p[K.P_NINT] = params.n if (float(params.n).is_integer() and 1 <= params.n <= 32) else 0
+    p[K.P_SIGMA1] = params.sigma1
+    p[K.P_SIGMA0] = params.sigma0 or 0.0
+    p[K.P_REVTOL] = params.reversal_tol
+    p[K.P_INERTIA] = params.inertia
+    kind, tz, tF = params.transition_curve.kernel_arrays()
+    return MODEL_CODES[params.model], p, kind, tz, tF
+
+
+def initial_state(params: FrictionParams, fh0: float = 0.0, stack_depth: int = 64) -> np.ndarray:
+    """At rest, hysteresis force ``fh0``, memory holding only the outer loop F_s- … F_s+."""
+    _, p, *_ = pack(params)
+    st = K.new_state(stack_depth)
+    K.init_state(st, p, fh0)
+    if params.model == "lugre" and params.sigma0:
+        st[K.S_Z] = fh0 / params.sigma0
+    return st
+
+
+def memory_summary(st: np.ndarray) -> dict:
+    cap = (len(st) - K.HEADER) // 2
+    nmin, nmax = int(st[K.S_NMIN]), int(st[K.S_NMAX])
+    return {
+        "reversals": int(st[K.S_REVERSALS]),
+        "loop_closings": int(st[K.S_CLOSINGS]),
+        "resets": int(st[K.S_RESETS]),
+        "max_stack_depth": int(st[K.S_DEPTH]),
+        "dropped_pairs": int(st[K.S_DROPPED]),
+        "stack_m": st[K.HEADER : K.HEADER + nmin].tolist(),
+        "stack_M": st[K.HEADER + cap : K.HEADER + cap + nmax].tolist(),
+    }
+
+
+def _time(t) -> np.ndarray:
+    t = np.ascontiguousarray(t, dtype=np.float64)
+    if t.ndim != 1 or len(t) < 2:
+        raise ValueError(f"time: need a 1-D series of at least 2 samples, got shape {t.shape}")
+    if not np.all(np.isfinite(t)):
+        raise ValueError(f"time: non-finite value at sample {int(np.argmin(np.isfinite(t)))}")
+    bad = np.flatnonzero(np.diff(t) <= 0)
+    if len(bad):
+        raise ValueError(f"time: must increase strictly, but sample {bad[0] + 1} is not after sample {bad[0]}")
+    return t
+
+
+def _series(name: str, a, n: int) -> np.ndarray:
+    a = np.ascontiguousarray(a, dtype=np.float64)
+    if a.shape != (n,):
+        raise ValueError(f"{name}: expected {n} samples like time, got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name}: non-finite value at sample {int(np.argmin(np.isfinite(a)))}")
+    return a
+
+
+def simulate_displacement(params: FrictionParams, t, x, *, state: np.ndarray | None = None) -> SimResult:
+    """Friction predicted along a prescribed displacement x(t).
+
+    The applied force reported is the one that would produce this motion, I·ẍ + F.
+    ``state`` (from ``initial_state``) lets a caller start from a chosen memory and read it
+    back afterwards; it is updated in place.
+    """
+    t = _time(t)
+    x = _series("position", x, len(t))
+    code, p, kind, tz, tF = pack(params)
+    st = initial_state(params) if state is None else state
+    n = len(t)
+    F, Fh, Z, V = (np.empty(n) for _ in range(4))
+    K.run_displacement(code, p, kind, tz, tF, st, t, x, F, Fh, Z, V)
+    acc = np.zeros(n)
+    acc[1:] = np.diff(V) / np.diff(t)
+    return SimResult(t, x, V, params.inertia * acc + F, F, Fh, Z, params.model, memory_summary(st))
+
+
+def simulate_force(params: FrictionParams, t, f, *, x0: float = 0.0, v0: float = 0.0,
+                   state: np.ndarray | None = None) -> SimResult:
+    """The plant I·ẍ = f - F (eq. (8)) under a prescribed applied force f(t)."""
+    t = _time(t)
+    f = _series("applied_force", f, len(t))
+    code, p, kind, tz, tF = pack(params)
+    st = initial_state(params) if state is None else state
+    n = len(t)
+    X, V, F, Fh, Z = (np.zeros(n) for _ in range(5))
+    X[0], V[0] = x0, v0
+    K.run_force(code, p, kind, tz, tF, st, t, f, X, V, F, Fh, Z)
+    return SimResult(t, X, V, f.copy(), F, Fh, Z, params.model, memory_summary(st))
+
+
+def simulate_closed_loop(params: FrictionParams, t, x_ref, *, kp: float, ki: float = 0.0, feedforward=None,
+                         encoder_step: float = 0.0, ctrl_every: int = 1, x0: float = 0.0,
+                         state: np.ndarray | None = None) -> SimResult:
+    """Position control: u = Kp·e + Ki·∫e + feedforward, e = x_ref - quantised x."""
+    t = _time(t)
+    x_ref = _series("x_ref", x_ref, len(t))
+    ff = np.zeros(len(t)) if feedforward is None else _series("feedforward", feedforward, len(t))
+    if ctrl_every < 1:
+        raise ValueError(f"ctrl_every: must be >= 1, got {ctrl_every}")
+    code, p, kind, tz, tF = pack(params)
+    st = initial_state(params) if state is None else state
+    n = len(t)
+    X, V, U, F, Fh, Z = (np.zeros(n) for _ in range(6))
+    X[0] = x0
+    K.run_closed_loop(code, p, kind, tz, tF, st, t, x_ref, ff, float(kp), float(ki), float(encoder_step),
+                      int(ctrl_every), X, V, U, F, Fh, Z)
+    return SimResult(t, X, V, U, F, Fh, Z, params.model, memory_summary(st))
+
+
+def stribeck_curve(params: FrictionParams, v) -> np.ndarray:
+    """Steady-state friction S(v) + σ2·v, eq. (6), vectorised (0 at v = 0)."""
+    v = np.asarray(v, dtype=np.float64)
+    out = np.zeros_like(v)
+    for side, sp in ((1, params.stribeck.positive), (-1, params.stribeck.negative)):
+        m = v * side > 0
+        vv = v[m]
+        out[m] = sp.Fc + (sp.Fs - sp.Fc) * np.exp(-np.abs(vv / sp.vs) ** sp.delta) + sp.sigma2 * vv
+    return out
+
+
+def transition_curve_values(params: FrictionParams, z) -> np.ndarray:
+    kind, tz, tF = params.transition_curve.kernel_arrays()
+    return np.array([K.transition_curve(kind, tz, tF, float(zi)) for zi in np.atleast_1d(z)])
