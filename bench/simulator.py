@@ -2,8 +2,8 @@
 same model and experiment, run in the same process.
 
 The experiment: a prescribed displacement x(t) = 2e-4·sin(2π·0.5·t) + 6e-5·sin(2π·2.3·t) rad
-sampled at dt = 1e-4 s, which visits presliding with nested internal loops (closings) and
-short stretches of sliding (resets), so every mechanism of Section III-B runs.
+sampled at dt = 1e-4 s: presliding with velocity reversals, nested internal loops and their
+closing (wiping out), up to ~90 % of the break-away force.
 
 The baseline integrates eq. (5) with ``solve_ivp`` (LSODA, stiff-capable) between velocity
 reversals, with events for loop closing and reset, and uses the same memory functions as the
@@ -96,6 +96,7 @@ def leuven_solve_ivp(params, t_eval, rtol=1e-8, atol=1e-13):
                     K.reset_to_outer_loop(st, p, kind, tz, tF, side, fh)
                 t0 = te + 1e-12
             else:
+                st[K.S_Z] = sol.sol(b)[0]
                 t0 = b
     return out
 
@@ -132,6 +133,7 @@ def bench_simulator(quick: bool = False, progress=print) -> dict:
     f = 30.0 * np.sin(2 * np.pi * 0.05 * t) + 5.0 * np.sin(2 * np.pi * 0.37 * t)
     from model import simulate_force
 
+    simulate_force(leuven, t[:100], f[:100])
     force_rate, _ = _rate(lambda: simulate_force(leuven, t, f), n_steps, repeat=1)
 
     # baseline on a shorter span at matched accuracy
@@ -139,7 +141,9 @@ def bench_simulator(quick: bool = False, progress=print) -> dict:
     tb = np.arange(int(span / DT)) * DT
     progress(f"solve_ivp baseline over {len(tb)} steps")
     t0 = time.perf_counter()
-    F_ivp = leuven_solve_ivp(leuven, tb)
+    # tolerances loosened until the baseline's error matches the compiled simulator's
+    # (both about 0.4 N·m at the reversals, where sampling at dt dominates)
+    F_ivp = leuven_solve_ivp(leuven, tb, rtol=1e-2, atol=1e-8)
     ivp_time = time.perf_counter() - t0
     ivp_rate = len(tb) / ivp_time
     fine = np.arange(int(span / DT) * 100) * (DT / 100)

@@ -207,7 +207,7 @@ def velocity_reversal(st, p, kind, tz, tF, side):
     st[S_REVERSALS] += 1
 
 
-@kernel
+@helper
 def close_internal_loops(st, kind, tz, tF, fh):
     """Mechanism 2: when F_h reaches the extremum where the current internal loop began,
     remove both extrema of that loop (wiping out) and continue the older curve:
@@ -283,7 +283,7 @@ def _abs_pow(a, p):
     return a ** (p[P_N] - 1.0)
 
 
-@kernel
+@helper
 def solve_state_equation(p, kind, tz, tF, z0, dx, D):
     """Backward-Euler step of eq. (5) written per unit displacement,
     z1 = z0 + dx·(1 - sign(r)|r|^n), r = F_d(z1)/D, D = S(v) - F_b.
