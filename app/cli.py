@@ -80,6 +80,34 @@ def cmd_simulate(args) -> int:
     return 0
 
 
+def cmd_fit(args) -> int:
+    from identify.data import load_recording, parse_column_mapping
+    from identify.fit import fit_recordings
+    from identify.paramfile import save_params
+
+    cols = parse_column_mapping(args.columns)
+    base = _params(args.params, None)
+    recs = [load_recording(path, columns=cols) for path in args.data]
+    for r in recs:
+        for note in r.notes:
+            print(f"{r.source}: {note}", file=sys.stderr)
+
+    def progress(frac, msg):
+        bar = "#" * int(round(20 * frac))
+        print(f"\r[{bar:20s}] {int(100 * frac):3d}% {msg:60s}", end="", file=sys.stderr, flush=True)
+
+    try:
+        res = fit_recordings(recs, base=base, n=args.n, fit_n=args.fit_n, progress=progress)
+    except ValueError as e:
+        print(file=sys.stderr)
+        raise UserError(f"fit: {e}") from None
+    print(file=sys.stderr)
+    print(res.report())
+    save_params(res.params, args.out)
+    print(f"parameters -> {args.out}")
+    return 0
+
+
 def cmd_bench(args) -> int:
     from bench.simulator import run_all
 
@@ -107,6 +135,15 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau")
     s.add_argument("--out", help="output CSV")
     s.set_defaults(func=cmd_simulate)
+
+    f = sub.add_parser("fit", help="fit S(v) and the transition curve to recorded CSV data")
+    f.add_argument("data", nargs="+", help="recorded CSV/TSV files")
+    f.add_argument("--out", required=True, help="parameter YAML to write")
+    f.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau")
+    f.add_argument("--params", help="starting/default parameters for what the data cannot determine")
+    f.add_argument("--n", type=float, default=7.0, help="exponent n of eq. (5) (default 7, as the paper)")
+    f.add_argument("--fit-n", action="store_true", help="estimate n as well")
+    f.set_defaults(func=cmd_fit)
 
     b = sub.add_parser("bench", help="measure simulator (and fit) speed")
     b.add_argument("--quick", action="store_true", help="smaller problem sizes")

@@ -1,0 +1,110 @@
+"""Markov estimator of the constant-velocity curve S(v) + σ2·v, eq. (7), per velocity sign.
+
+Section IV-A: weighted least squares over constant-velocity levels, the weights being the
+inverse variances of the measured friction at each level. We weight by the variance of each
+level's *mean* (sample variance / number of samples), so that the covariance
+(JᵀWJ)⁻¹ of the estimate is the one the data support.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import least_squares
+
+NAMES = ("Fs", "Fc", "vs", "delta", "sigma2")
+
+
+@dataclass
+class Levels:
+    """Constant-velocity levels: mean velocity, mean friction, variance of that mean."""
+
+    velocity: np.ndarray
+    friction: np.ndarray
+    variance: np.ndarray
+    count: np.ndarray
+
+
+@dataclass
+class SideFit:
+    """Estimate for one velocity sign: values, 1-σ, correlation matrix, weighted cost."""
+
+    values: dict
+    stderr: dict
+    correlation: np.ndarray
+    chi2: float
+    dof: int
+    names: tuple = NAMES
+    notes: list = field(default_factory=list)
+
+
+def stribeck_plus_viscous(theta, v):
+    Fs, Fc, vs, delta, sigma2 = theta
+    return Fc + (Fs - Fc) * np.exp(-np.abs(v / vs) ** delta) + sigma2 * v
+
+
+def fit_side(levels: Levels, sign: int) -> SideFit:
+    """Weighted least squares for one sign (scipy ``least_squares``, trust-region reflective).
+
+    Needs at least 6 levels (5 parameters and one degree of freedom)."""
+    m = levels.velocity * sign > 0
+    v, F, var = levels.velocity[m], levels.friction[m], levels.variance[m]
+    word = "positive" if sign > 0 else "negative"
+    if len(v) < 6:
+        raise ValueError(f"Markov estimator: only {len(v)} constant-velocity level(s) with {word} velocity; need at least 6")
+    w = 1.0 / np.sqrt(np.maximum(var, 1e-18 * np.max(np.abs(F)) ** 2))
+    order = np.argsort(np.abs(v))
+    v, F, w = v[order], F[order], w[order]
+    a = np.abs(v)
+    # starting point: σ2 from the fastest levels, F_c from the middle, F_s from the slowest
+    hi = a >= np.quantile(a, 0.7)
+    s2 = max(0.0, np.polyfit(v[hi], F[hi], 1)[0]) if hi.sum() >= 2 else 0.0
+    Fc0 = np.min(np.abs(F - s2 * v)) * sign
+    Fs0 = (F[0] - s2 * v[0])
+    if abs(Fs0) <= abs(Fc0):
+        Fs0 = Fc0 * 1.1
+    # Table I convention: negative-side Fs, Fc, vs are negative
+    big = np.inf
+    if sign > 0:
+        lo_b = np.array([1e-12, 1e-12, 1e-12, 0.05, 0.0])
+        hi_b = np.array([big, big, big, 5.0, big])
+    else:
+        lo_b = np.array([-big, -big, -big, 0.05, 0.0])
+        hi_b = np.array([-1e-12, -1e-12, -1e-12, 5.0, big])
+
+    def resid(theta):
+        return w * (F - stribeck_plus_viscous(theta, v))
+
+    best = None
+    for vs0 in np.quantile(a, [0.1, 0.3, 0.6]):
+        for d0 in (0.5, 1.0, 2.0):
+            x0 = np.clip([Fs0, Fc0, sign * vs0, d0, s2], lo_b + 1e-12, hi_b - 1e-12)
+            r = least_squares(resid, x0, bounds=(lo_b, hi_b), method="trf", x_scale="jac")
+            if best is None or r.cost < best.cost:
+                best = r
+    J = best.jac
+    notes = []
+    try:
+        cov = np.linalg.inv(J.T @ J)
+    except np.linalg.LinAlgError:
+        cov = np.linalg.pinv(J.T @ J)
+        notes.append("the information matrix is singular: some parameters are not identifiable from these levels")
+    sd = np.sqrt(np.clip(np.diag(cov), 0, None))
+    corr = cov / np.outer(np.where(sd > 0, sd, 1), np.where(sd > 0, sd, 1))
+    for i, name in enumerate(NAMES):
+        if np.any(np.isclose(best.x[i], [lo_b[i], hi_b[i]])):
+            notes.append(f"{name} is at its bound: its error bar is not meaningful")
+    return SideFit(
+        values=dict(zip(NAMES, map(float, best.x))),
+        stderr=dict(zip(NAMES, map(float, sd))),
+        correlation=corr,
+        chi2=float(2 * best.cost),
+        dof=int(len(v) - 5),
+        notes=notes,
+    )
+
+
+def fit_stribeck(levels: Levels) -> dict:
+    """Both signs: {'positive': SideFit, 'negative': SideFit}."""
+    return {"positive": fit_side(levels, +1), "negative": fit_side(levels, -1)}

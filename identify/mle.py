@@ -1,0 +1,233 @@
+"""Maximum-likelihood estimator of the transition curve F_d (Section IV-B, Table II).
+
+Presliding data: branches of a slow applied-force ramp, each starting at a velocity reversal.
+Neglecting inertia, σ1 and σ2 (the paper's eq. (9)), the displacement along a branch after a
+force change ΔF ≥ 0 from the reversal is
+
+    x(ΔF) = ∫_0^ΔF (dF_d⁻¹/dF) / (1 - (F/D)^n) dF,      D = F_s(direction) - F_b,
+
+so for a piecewise-linear F_d with given knot abscissas the ordinates set the displacement
+curve. Each data set carries its own noise model on the measured displacement:
+``Gaussian(sigma)`` (a proximity sensor) or ``Quantized(step, jitter)`` (an encoder: the
+reading is the true position plus Gaussian jitter, rounded to the step; the likelihood of a
+reading is the probability mass of its quantisation bin). Several data sets are combined in
+one likelihood; each branch has an unknown displacement offset (the sensor's zero). The
+covariance is the inverse of the Hessian of the negative log-likelihood at the optimum.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import least_squares
+from scipy.special import log_ndtr
+
+GRID = 400  # force grid per branch for the displacement integral
+
+
+@dataclass(frozen=True)
+class Gaussian:
+    sigma: float
+
+    def residuals(self, measured, predicted):
+        """r with -log L = ½·Σr² (+ const)."""
+        return (measured - predicted) / self.sigma
+
+    def nll(self, measured, predicted):
+        r = self.residuals(measured, predicted)
+        return 0.5 * float(np.sum(r * r))
+
+
+@dataclass(frozen=True)
+class Quantized:
+    step: float
+    jitter: float
+
+    def _log_mass(self, measured, predicted):
+        # log P(reading) = log(Φ(hi) - Φ(lo)) for the reading's bin; the mirror image keeps
+        # both tails accurate
+        a = (measured + 0.5 * self.step - predicted) / self.jitter
+        b = (measured - 0.5 * self.step - predicted) / self.jitter
+        flip = a + b > 0
+        hi = np.where(flip, -b, a)
+        lo = np.where(flip, -a, b)
+        la, lb = log_ndtr(hi), log_ndtr(lo)
+        return la + np.log1p(-np.exp(np.minimum(lb - la, -1e-16)))
+
+    def residuals(self, measured, predicted):
+        """r with -log L = ½·Σr²: r = sqrt(-2·log P) ≥ 0 per reading (P ≤ 1), signed so
+        that least squares sees which way the prediction is off."""
+        lp = self._log_mass(measured, predicted)
+        return np.sign(predicted - measured) * np.sqrt(np.maximum(-2.0 * lp, 0.0))
+
+    def nll(self, measured, predicted):
+        return -float(np.sum(self._log_mass(measured, predicted)))
+
+
+@dataclass
+class Branch:
+    """One presliding branch: force change since the reversal (≥ 0, increasing) and measured
+    displacement (in the branch's direction), with D = F_s - F_b of its direction (> 0)."""
+
+    force: np.ndarray
+    displacement: np.ndarray
+    D: float
+
+
+@dataclass
+class PreslidingData:
+    branches: list
+    noise: object
+    name: str = "data"
+
+
+@dataclass
+class TransitionFit:
+    z: np.ndarray
+    F: np.ndarray
+    stderr: np.ndarray
+    covariance: np.ndarray
+    n: float
+    n_stderr: float | None
+    nll: float
+    offsets: list = field(default_factory=list)
+    notes: list = field(default_factory=list)
+
+
+def branch_displacement(z_knots, F_knots, n, D, force):
+    """x(ΔF) of the module docstring, for the force values ``force`` (ascending, ≥ 0)."""
+    top = min(force[-1], 0.999 * D) if len(force) else 0.0
+    # the knots are grid points, so the piecewise-constant dF_d⁻¹/dF is integrated exactly
+    # and only the smooth factor 1/(1 - (F/D)^n) by the trapezoid rule
+    inner = F_knots[(F_knots > 0.0) & (F_knots < top)]
+    grid = np.unique(np.concatenate([np.linspace(0.0, top, GRID), inner]))
+    mid = 0.5 * (grid[1:] + grid[:-1])
+    seg = np.clip(np.searchsorted(F_knots, mid, side="right") - 1, 0, len(F_knots) - 2)
+    dzdF = (z_knots[seg + 1] - z_knots[seg]) / (F_knots[seg + 1] - F_knots[seg])
+    factor = 1.0 / (1.0 - (grid / D) ** n)
+    x = np.concatenate([[0.0], np.cumsum(dzdF * 0.5 * (factor[1:] + factor[:-1]) * np.diff(grid))])
+    return np.interp(force, grid, x)
+
+
+def _unpack(theta, n_knots, n_branches, fit_n, n_fixed):
+    inc = np.exp(theta[:n_knots])
+    F = np.concatenate([[0.0], np.cumsum(inc)])
+    k = n_knots
+    n = float(np.exp(theta[k])) if fit_n else n_fixed
+    k += 1 if fit_n else 0
+    offsets = theta[k : k + n_branches]
+    return F, n, offsets
+
+
+def _nll_F(F, n, offsets, z_knots, datasets):
+    total = 0.0
+    i = 0
+    for ds in datasets:
+        for br in ds.branches:
+            pred = branch_displacement(z_knots, F, n, br.D, br.force) + offsets[i]
+            total += ds.noise.nll(br.displacement, pred)
+            i += 1
+    return total
+
+
+def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = False, F_start=None) -> TransitionFit:
+    """ML ordinates of F_d at the abscissas ``z_knots`` (first 0), from one or more data sets."""
+    z_knots = np.asarray(z_knots, dtype=float)
+    if z_knots[0] != 0.0 or np.any(np.diff(z_knots) <= 0):
+        raise ValueError("transition curve knots: abscissas must start at 0 and increase strictly")
+    branches = [br for ds in datasets for br in ds.branches]
+    if not branches:
+        raise ValueError("maximum-likelihood estimator: no presliding branches in the data")
+    nk = len(z_knots) - 1
+    if F_start is None:
+        # the force at which the longest branch has moved z_i (z ≈ x while F_d ≪ D)
+        br = max(branches, key=lambda b: np.ptp(b.displacement))
+        x_rel = np.maximum.accumulate(br.displacement - br.displacement[0])
+        F_start = np.interp(z_knots, x_rel, br.force, right=br.force[-1])
+        F_start = np.maximum.accumulate(F_start) + 1e-6 * np.max(br.force) * np.arange(len(z_knots))
+        F_start[0] = 0.0
+    x_scale = max(np.ptp(b.displacement) for b in branches) or 1.0
+    theta0 = np.log(np.diff(F_start))
+    if fit_n:
+        theta0 = np.append(theta0, np.log(n))
+    # offsets in units of the displacement span: keeps the problem well scaled
+    theta0 = np.append(theta0, [(b.displacement[0]) / x_scale for b in branches])
+
+    def split(theta):
+        th = theta.copy()
+        th[nk + (1 if fit_n else 0):] *= x_scale
+        return _unpack(th, nk, len(branches), fit_n, n)
+
+    def resid(theta):
+        F, nn, off = split(theta)
+        out = []
+        i = 0
+        for ds in datasets:
+            for br in ds.branches:
+                pred = branch_displacement(z_knots, F, nn, br.D, br.force) + off[i]
+                out.append(ds.noise.residuals(br.displacement, pred))
+                i += 1
+        return np.concatenate(out)
+
+    # increments of F_d between knots stay within a physical range (a flat likelihood must not
+    # send a segment to infinite stiffness)
+    f_max = max(np.max(b.force) for b in branches)
+    lo = np.full(len(theta0), -np.inf)
+    hi = np.full(len(theta0), np.inf)
+    lo[:nk], hi[:nk] = np.log(1e-6 * f_max), np.log(20.0 * f_max)
+    if fit_n:
+        lo[nk], hi[nk] = np.log(0.5), np.log(50.0)
+    theta0 = np.clip(theta0, lo + 1e-9, hi - 1e-9)
+    best = least_squares(resid, theta0, bounds=(lo, hi), method="trf", x_scale="jac", xtol=1e-12, ftol=1e-12,
+                         gtol=1e-12)
+    F, nn, off = split(best.x)
+    best.fun = float(0.5 * np.sum(best.fun ** 2))
+
+    # covariance from the curvature of -log L in the natural parameters (F_1..F_k, n, offsets)
+    phi = np.concatenate([F[1:], [nn] if fit_n else [], off])
+
+    def g(ph):
+        FF = np.concatenate([[0.0], ph[:nk]])
+        nn_ = ph[nk] if fit_n else n
+        return _nll_F(FF, nn_, ph[nk + (1 if fit_n else 0):], z_knots, datasets)
+
+    H = _hessian(g, phi)
+    notes = []
+    try:
+        cov = np.linalg.inv(H)
+        if np.any(np.diag(cov) < 0):
+            raise np.linalg.LinAlgError
+    except np.linalg.LinAlgError:
+        cov = np.linalg.pinv(H)
+        notes.append("the likelihood is flat in some direction: error bars are lower bounds")
+    sd = np.sqrt(np.abs(np.diag(cov)))
+    return TransitionFit(
+        z=z_knots, F=F, stderr=np.concatenate([[0.0], sd[:nk]]), covariance=cov[:nk, :nk], n=nn,
+        n_stderr=float(sd[nk]) if fit_n else None, nll=float(best.fun), offsets=list(map(float, off)), notes=notes,
+    )
+
+
+def _hessian(f, x):
+    """Central-difference Hessian, step relative to each coordinate's scale."""
+    x = np.asarray(x, dtype=float)
+    k = len(x)
+    h = 1e-4 * np.maximum(np.abs(x), 1e-3 * np.max(np.abs(x[: max(1, k)])) + 1e-12)
+    H = np.zeros((k, k))
+    f0 = f(x)
+    for i in range(k):
+        ei = np.zeros(k)
+        ei[i] = h[i]
+        H[i, i] = (f(x + ei) - 2 * f0 + f(x - ei)) / h[i] ** 2
+        for j in range(i + 1, k):
+            ej = np.zeros(k)
+            ej[j] = h[j]
+            H[i, j] = H[j, i] = (f(x + ei + ej) - f(x + ei - ej) - f(x - ei + ej) + f(x - ei - ej)) / (4 * h[i] * h[j])
+    return H
+
+
+def fit_transition_curve_unweighted(datasets, z_knots, *, n: float = 7.0) -> np.ndarray:
+    """Plain least squares on all displacements alike, ignoring the noise models: the
+    comparison the ML estimator must beat. Returns the ordinates."""
+    pooled = [PreslidingData(ds.branches, Gaussian(1.0), ds.name) for ds in datasets]
+    return fit_transition_curve(pooled, z_knots, n=n).F

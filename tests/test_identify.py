@@ -1,0 +1,127 @@
+"""Identification: loader errors, Markov and maximum-likelihood estimators (recovery,
+calibration of the stated uncertainties, ML against plain least squares)."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from identify.data import DataError, load_recording
+from identify.markov import Levels, fit_stribeck, stribeck_plus_viscous
+from identify.mle import Branch, Gaussian, PreslidingData, Quantized, branch_displacement, fit_transition_curve, \
+    fit_transition_curve_unweighted
+
+TRUE = {"positive": (36.0, 27.0, 0.007, 0.5, 7.7), "negative": (-63.0, -52.0, -0.004, 0.9, 8.0)}
+SPEEDS = np.array([0.001, 0.002, 0.004, 0.008, 0.015, 0.03, 0.06, 0.12, 0.25, 0.5, 1.0])
+Z = np.array([0.0, 1.8e-6, 1.41e-4, 2.66e-4, 5.21e-4])
+F_TRUE = np.array([0.0, 16.4, 75.1, 87.5, 100.0])
+
+
+def synthetic_levels(rng, sd=0.5, count=400):
+    v = np.concatenate([SPEEDS, -SPEEDS])
+    F = np.where(v > 0, stribeck_plus_viscous(TRUE["positive"], v), stribeck_plus_viscous(TRUE["negative"], v))
+    se = sd / np.sqrt(count)  # standard error of each level's mean
+    return Levels(v, F + rng.normal(0, se, len(v)), np.full(len(v), se**2), np.full(len(v), count))
+
+
+def test_markov_recovers_table_one_within_stated_uncertainty(rng):
+    fit = fit_stribeck(synthetic_levels(rng))
+    for side, truth in TRUE.items():
+        for name, t in zip(("Fs", "Fc", "vs", "delta", "sigma2"), truth):
+            v, s = fit[side].values[name], fit[side].stderr[name]
+            assert abs(v - t) < 3.5 * s, (side, name, v, s)  # 3.5σ: 20 checks, ~1 % chance of one miss
+
+
+@pytest.mark.slow
+def test_markov_uncertainty_is_calibrated_over_monte_carlo():
+    rng = np.random.default_rng(2024)
+    est, sds = [], []
+    for _ in range(60):
+        f = fit_stribeck(synthetic_levels(rng))["positive"]
+        est.append([f.values[k] for k in ("Fs", "Fc", "sigma2")])
+        sds.append([f.stderr[k] for k in ("Fs", "Fc", "sigma2")])
+    est, sds = np.array(est), np.array(sds)
+    truth = np.array([36.0, 27.0, 7.7])
+    ratio = np.std(est, axis=0, ddof=1) / np.mean(sds, axis=0)
+    assert np.all(np.abs(ratio - 1) < 0.25), ratio  # reported σ within ±25 % of the empirical spread
+    coverage = np.mean(np.abs(est - truth) < sds, axis=0)
+    assert np.all((coverage > 0.55) & (coverage < 0.81)), coverage  # ~68 %, binomial 2σ for 60 draws
+
+
+def _branches(rng, noise, nb=3, npts=300, f_top=96.0):
+    out = []
+    for _ in range(nb):
+        f = np.linspace(0, f_top, npts)
+        x = branch_displacement(Z, F_TRUE, 7.0, 99.0, f) + 3e-5
+        if isinstance(noise, Gaussian):
+            xm = x + rng.normal(0, noise.sigma, npts)
+        else:
+            xm = noise.step * np.round((x + rng.normal(0, noise.jitter, npts)) / noise.step)
+        out.append(Branch(f, xm, 99.0))
+    return PreslidingData(out, noise)
+
+
+def test_ml_recovers_transition_curve_within_uncertainty(rng):
+    data = [_branches(rng, Gaussian(5e-8)), _branches(rng, Quantized(1.6e-5, 4e-6))]
+    fit = fit_transition_curve(data, Z)
+    assert np.all(np.abs(fit.F[1:] - F_TRUE[1:]) < 3.5 * fit.stderr[1:]), (fit.F, fit.stderr)
+
+
+def test_ml_with_two_noise_models_beats_unweighted_least_squares():
+    rng = np.random.default_rng(99)
+    ml, ls = [], []
+    for _ in range(12):
+        # a short, precise proximity-sensor record and a long, coarse encoder record
+        data = [_branches(rng, Gaussian(2e-7), nb=1, npts=120), _branches(rng, Quantized(1.6e-5, 4e-6), nb=4)]
+        ml.append(fit_transition_curve(data, Z).F[1:])
+        ls.append(fit_transition_curve_unweighted(data, Z)[1:])
+    var_ml, var_ls = np.var(ml, axis=0), np.var(ls, axis=0)
+    assert np.all(var_ml < var_ls), (var_ml, var_ls)
+
+
+@pytest.mark.parametrize("content,match", [
+    ("time,position\n" + "".join(f"{i},{i * 1e-6}\n" for i in range(20)), None),
+    ("t,q,tau\n" + "".join(f"{i},{i},abc\n" if i == 7 else f"{i},{i},1\n" for i in range(20)), r"'tau' row 9: 'abc'"),
+    ("t,q\n" + "".join(f"{i if i != 5 else 3},{i}\n" for i in range(20)), r"row 7: time 3 does not increase"),
+    ("t,q\n0,1\n", r"only 1 sample"),
+    ("a,b\n" + "".join(f"{i},{i}\n" for i in range(20)), r"no column for time"),
+    ("", r"empty"),
+])
+def test_malformed_csv_is_one_clear_line(tmp_path, content, match):
+    path = tmp_path / "rec.csv"
+    path.write_text(content)
+    if match is None:
+        rec = load_recording(path, require=("time", "position"))
+        assert len(rec) == 20
+        return
+    with pytest.raises(DataError, match=match) as e:
+        load_recording(path, require=("time",))
+    assert "\n" not in str(e.value) and str(path) in str(e.value)
+
+
+def test_units_from_header_are_converted(tmp_path):
+    path = tmp_path / "rec.tsv"
+    pd.DataFrame({"Time (ms)": np.arange(20.0), "Position [mm]": np.arange(20.0), "Friction [uN]": np.ones(20)}).to_csv(
+        path, sep="\t", index=False)
+    rec = load_recording(path, require=("time", "position", "friction"))
+    assert rec.time[1] == pytest.approx(1e-3) and rec.position[1] == pytest.approx(1e-3)
+    assert rec.friction[0] == pytest.approx(1e-6)
+
+
+def test_fit_cli_writes_loadable_yaml_and_nothing_on_error(tmp_path):
+    import subprocess
+    import sys
+
+    from identify.paramfile import load_params
+
+    out = tmp_path / "p.yaml"
+    r = subprocess.run([sys.executable, "-m", "app.cli", "fit", "sample_data/constant_velocity.csv", "--out", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    p = load_params(out)
+    assert abs(p.stribeck.positive.Fc - 27.0) < 4 * p.uncertainty["stribeck.positive.Fc"]
+    assert p.provenance["data"] == ["sample_data/constant_velocity.csv"]
+    bad = tmp_path / "bad.csv"
+    bad.write_text("time,position\n0,0\n1,1\n")
+    out2 = tmp_path / "q.yaml"
+    r = subprocess.run([sys.executable, "-m", "app.cli", "fit", str(bad), "--out", str(out2)], capture_output=True, text=True)
+    assert r.returncode == 2 and "Traceback" not in r.stderr and not out2.exists()
