@@ -77,13 +77,20 @@ def _segment(knots, a):
 
 
 @helper
+def _odd_interp(xk, yk, u):
+    """Point-symmetric linear interpolation through knots (xk, yk) starting at (0, 0),
+    extended past the last knot; with the knots swapped it is its own inverse."""
+    a = abs(u)
+    i = _segment(xk, a)
+    y = yk[i - 1] + (yk[i] - yk[i - 1]) / (xk[i] - xk[i - 1]) * (a - xk[i - 1])
+    return y if u >= 0.0 else -y
+
+
+@helper
 def transition_curve(kind, tz, tF, z):
     """F_d(z), point-symmetric; piecewise linear extended past the last knot."""
     if kind == 0:
-        a = abs(z)
-        i = _segment(tz, a)
-        f = tF[i - 1] + (tF[i] - tF[i - 1]) / (tz[i] - tz[i - 1]) * (a - tz[i - 1])
-        return f if z >= 0.0 else -f
+        return _odd_interp(tz, tF, z)
     return tF[0] * math.tanh(z / tF[1]) + tF[2] * z
 
 
@@ -101,10 +108,7 @@ def transition_slope(kind, tz, tF, z):
 def transition_curve_inverse(kind, tz, tF, F):
     """F_d^{-1}(F): needed by loop closing and reset."""
     if kind == 0:
-        a = abs(F)
-        i = _segment(tF, a)
-        z = tz[i - 1] + (tz[i] - tz[i - 1]) / (tF[i] - tF[i - 1]) * (a - tF[i - 1])
-        return z if F >= 0.0 else -z
+        return _odd_interp(tF, tz, F)
     A, z0, k = tF[0], tF[1], tF[2]
     a = abs(F)
     # A·tanh(z/z0) + k·z is increasing and concave for z > 0: the root lies in
