@@ -102,7 +102,7 @@ def _read_table(path: Path, text: str) -> pd.DataFrame:
     first = text.splitlines()[0] if text else ""
     sep = "\t" if first.count("\t") > max(first.count(","), 0) else ("," if "," in first else r"\s+")
     try:
-        return pd.read_csv(io.StringIO(text), sep=sep, engine="python", comment="#", skip_blank_lines=True)
+        return pd.read_csv(io.StringIO(text), sep=sep, engine="c", comment="#", skip_blank_lines=True)
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
         raise DataError(f"{path}: not a readable CSV/TSV table ({msg})") from None

@@ -75,7 +75,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             continue
         br = presliding_branches(r, p.stribeck.positive.Fs, p.stribeck.negative.Fs)
         if br:
-            datasets.append(PreslidingData(br, detect_noise(r.position), name=r.source))
+            # the noise of the position signal where it matters: on the presliding branches
+            datasets.append(PreslidingData(br, detect_noise([b.displacement for b in br]), name=r.source))
     n_br = sum(len(d.branches) for d in datasets)
     tfit = None
     if n_br:

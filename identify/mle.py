@@ -56,10 +56,12 @@ class Quantized:
         return la + np.log1p(-np.exp(np.minimum(lb - la, -1e-16)))
 
     def residuals(self, measured, predicted):
-        """r with -log L = ½·Σr²: r = sqrt(-2·log P) ≥ 0 per reading (P ≤ 1), signed so
-        that least squares sees which way the prediction is off."""
+        """r with -log L = ½·Σr² + const: r = ±sqrt(2·(log P_max - log P)), where P_max is
+        the mass of a bin centred on the prediction. Zero when the prediction sits in the
+        middle of its bin and signed by the direction of the miss, so r is continuous."""
         lp = self._log_mass(measured, predicted)
-        return np.sign(predicted - measured) * np.sqrt(np.maximum(-2.0 * lp, 0.0))
+        lp_max = self._log_mass(np.zeros(1), np.zeros(1))[0]
+        return np.sign(predicted - measured) * np.sqrt(np.maximum(2.0 * (lp_max - lp), 0.0))
 
     def nll(self, measured, predicted):
         return -float(np.sum(self._log_mass(measured, predicted)))
@@ -179,20 +181,36 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
     if fit_n:
         lo[nk], hi[nk] = np.log(0.5), np.log(50.0)
     theta0 = np.clip(theta0, lo + 1e-9, hi - 1e-9)
-    best = least_squares(resid, theta0, bounds=(lo, hi), method="trf", x_scale="jac", xtol=1e-12, ftol=1e-12,
-                         gtol=1e-12)
+    ns = nk + (1 if fit_n else 0)
+
+    def jac(theta):
+        # shared parameters move every residual; each offset moves only its own branch's
+        r0 = resid(theta)
+        J = np.zeros((len(r0), len(theta)))
+        for j in range(ns):
+            h = 1e-7 * max(1.0, abs(theta[j]))
+            tp = theta.copy()
+            tp[j] += h
+            J[:, j] = (resid(tp) - r0) / h
+        F, nn, off = split(theta)
+        row = 0
+        i = 0
+        for ds in datasets:
+            for br in ds.branches:
+                m = len(br.force)
+                pred = branch_displacement(z_knots, F, nn, br.D, br.force) + off[i]
+                h = 1e-7
+                J[row : row + m, ns + i] = (ds.noise.residuals(br.displacement, pred + h * x_scale) - r0[row : row + m]) / h
+                row += m
+                i += 1
+        return J
+
+    best = least_squares(resid, theta0, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac", xtol=1e-12,
+                         ftol=1e-12, gtol=1e-12)
     F, nn, off = split(best.x)
     best.fun = float(0.5 * np.sum(best.fun ** 2))
 
-    # covariance from the curvature of -log L in the natural parameters (F_1..F_k, n, offsets)
-    phi = np.concatenate([F[1:], [nn] if fit_n else [], off])
-
-    def g(ph):
-        FF = np.concatenate([[0.0], ph[:nk]])
-        nn_ = ph[nk] if fit_n else n
-        return _nll_F(FF, nn_, ph[nk + (1 if fit_n else 0):], z_knots, datasets)
-
-    H = _hessian(g, phi)
+    H = _information(z_knots, F, nn, fit_n, off, datasets)
     notes = []
     try:
         cov = np.linalg.inv(H)
@@ -208,21 +226,42 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
     )
 
 
-def _hessian(f, x):
-    """Central-difference Hessian, step relative to each coordinate's scale."""
-    x = np.asarray(x, dtype=float)
+def _hessian(f, x, h):
+    """Central-difference Hessian with steps ``h``."""
     k = len(x)
-    h = 1e-4 * np.maximum(np.abs(x), 1e-3 * np.max(np.abs(x[: max(1, k)])) + 1e-12)
     H = np.zeros((k, k))
     f0 = f(x)
+    E = np.diag(h)
     for i in range(k):
-        ei = np.zeros(k)
-        ei[i] = h[i]
-        H[i, i] = (f(x + ei) - 2 * f0 + f(x - ei)) / h[i] ** 2
+        H[i, i] = (f(x + E[i]) - 2 * f0 + f(x - E[i])) / h[i] ** 2
         for j in range(i + 1, k):
-            ej = np.zeros(k)
-            ej[j] = h[j]
-            H[i, j] = H[j, i] = (f(x + ei + ej) - f(x + ei - ej) - f(x - ei + ej) + f(x - ei - ej)) / (4 * h[i] * h[j])
+            H[i, j] = H[j, i] = (f(x + E[i] + E[j]) - f(x + E[i] - E[j]) - f(x - E[i] + E[j])
+                                 + f(x - E[i] - E[j])) / (4 * h[i] * h[j])
+    return H
+
+
+def _information(z_knots, F, n, fit_n, offsets, datasets):
+    """Observed information: the Hessian of -log L in (F_1..F_k[, n], offsets), the
+    curvature of the likelihood at its maximum. Each branch depends on the shared parameters
+    and its own offset only, so the matrix is assembled from small per-branch Hessians."""
+    nk = len(F) - 1
+    ns = nk + (1 if fit_n else 0)
+    nb = len(offsets)
+    shared = np.concatenate([F[1:], [n] if fit_n else []])
+    h_shared = 1e-4 * np.maximum(np.abs(shared), 1e-3 * np.max(np.abs(F)))
+    H = np.zeros((ns + nb, ns + nb))
+    i = 0
+    for ds in datasets:
+        scale = getattr(ds.noise, "sigma", None) or ds.noise.jitter
+        for br in ds.branches:
+            def f(p, br=br, noise=ds.noise):
+                FF = np.concatenate([[0.0], p[:nk]])
+                nn = p[nk] if fit_n else n
+                return noise.nll(br.displacement, branch_displacement(z_knots, FF, nn, br.D, br.force) + p[-1])
+
+            idx = list(range(ns)) + [ns + i]
+            H[np.ix_(idx, idx)] += _hessian(f, np.append(shared, offsets[i]), np.append(h_shared, 0.05 * scale))
+            i += 1
     return H
 
 

@@ -32,47 +32,53 @@ def constant_velocity_levels(rec: Recording, *, rel_tol: float = 0.03, min_sampl
     if F is None:
         raise ValueError(f"{rec.source}: needs a force or friction column for constant-velocity levels")
     v = _smooth(velocity_of(rec), 9)
+    w = 10
+    steady = np.abs(v) > v_floor
+    same = np.zeros(len(v), dtype=bool)
+    same[w:] = np.abs(v[w:] - v[:-w]) <= rel_tol * np.abs(v[w:])
+    steady &= same
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], steady.astype(np.int8), [0]])))
     out_v, out_F, out_var, out_n = [], [], [], []
-    start = 0
-    n = len(v)
-    while start < n:
-        if abs(v[start]) < v_floor:
-            start += 1
+    for start, end in zip(edges[::2], edges[1::2]):
+        if end - start < min_samples:
             continue
-        ref = v[start]
-        end = start
-        while end < n and abs(v[end] - ref) <= rel_tol * abs(ref) and np.sign(v[end]) == np.sign(ref):
-            end += 1
-            if end - start > 20:
-                ref = np.median(v[start:end])
+        s = start + int(settle_fraction * (end - start))
+        seg = slice(s, end - 5)
+        vs = v[seg]
+        # one level, not a slow acceleration: the whole kept part within rel_tol of its median
+        if np.ptp(vs) > 2 * rel_tol * abs(np.median(vs)):
+            continue
         travel = abs(rec.position[end - 1] - rec.position[start]) if rec.position is not None else np.inf
-        if end - start >= min_samples and travel >= min_travel:
-            s = start + int(settle_fraction * (end - start))
-            seg = slice(s, end - 5)
-            out_v.append(float(np.mean(v[seg])))
-            out_F.append(float(np.mean(F[seg])))
-            cnt = seg.stop - seg.start
-            out_var.append(float(np.var(F[seg], ddof=1) / cnt))
-            out_n.append(cnt)
-        start = max(end, start + 1)
+        if travel < min_travel:
+            continue
+        cnt = seg.stop - seg.start
+        out_v.append(float(np.mean(vs)))
+        out_F.append(float(np.mean(F[seg])))
+        out_var.append(float(np.var(F[seg], ddof=1) / cnt))
+        out_n.append(cnt)
     return Levels(np.array(out_v), np.array(out_F), np.array(out_var), np.array(out_n))
 
 
-def detect_noise(x: np.ndarray) -> object:
+def detect_noise(x) -> object:
     """Encoder-like (values on a grid of one step) → ``Quantized``; else ``Gaussian`` with σ
-    from the spread of second differences (a slow signal's curvature is negligible there)."""
-    d = np.abs(np.diff(x))
+    from the spread of second differences (a slow signal's curvature is negligible there;
+    white noise of σ gives second differences of variance 6σ²)."""
+    parts = [np.asarray(a, dtype=float) for a in (x if isinstance(x, (list, tuple)) else [x])]
+    x = np.concatenate(parts)
+    d = np.abs(np.concatenate([np.diff(a) for a in parts]))
     d = d[d > 0]
     if len(d):
         q = np.min(d)
         k = x / q
         if q > 0 and np.max(np.abs(k - np.round(k))) < 1e-6 and len(np.unique(np.round(k))) < 0.5 * len(x):
             return Quantized(step=float(q), jitter=float(0.25 * q))
-    sigma = float(np.std(np.diff(x, 2)) / np.sqrt(6.0))
+    # robust (median absolute deviation): velocity steps elsewhere in the file are outliers
+    d2 = np.concatenate([np.diff(a, 2) for a in parts if len(a) > 2])
+    sigma = float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0))
     return Gaussian(sigma=max(sigma, 1e-15))
 
 
-def presliding_branches(rec: Recording, Fs_pos: float, Fs_neg: float, *, v_max: float = 2e-3,
+def presliding_branches(rec: Recording, Fs_pos: float, Fs_neg: float, *, v_max: float = 2e-4,
                         min_points: int = 20, decimate: int = 1) -> list[Branch]:
     """Branches of the applied force between its turning points, where the joint stays in
     presliding (|v| < ``v_max``). Each branch is cut where it would close the previous

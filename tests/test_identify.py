@@ -125,3 +125,19 @@ def test_fit_cli_writes_loadable_yaml_and_nothing_on_error(tmp_path):
     out2 = tmp_path / "q.yaml"
     r = subprocess.run([sys.executable, "-m", "app.cli", "fit", str(bad), "--out", str(out2)], capture_output=True, text=True)
     assert r.returncode == 2 and "Traceback" not in r.stderr and not out2.exists()
+
+
+@pytest.mark.slow
+def test_ml_uncertainty_is_calibrated_over_monte_carlo():
+    rng = np.random.default_rng(77)
+    est, sds = [], []
+    for _ in range(50):
+        data = [_branches(rng, Gaussian(5e-7), nb=2, npts=150), _branches(rng, Quantized(1.6e-5, 4e-6), nb=2, npts=150)]
+        fit = fit_transition_curve(data, Z)
+        est.append(fit.F[1:])
+        sds.append(fit.stderr[1:])
+    est, sds = np.array(est), np.array(sds)
+    ratio = np.std(est, axis=0, ddof=1) / np.mean(sds, axis=0)
+    assert np.all(np.abs(ratio - 1) < 0.25), ratio
+    coverage = np.mean(np.abs(est - F_TRUE[1:]) < sds, axis=0)
+    assert np.all((coverage > 0.54) & (coverage < 0.82)), coverage  # ~68 %, binomial 2σ for 50 draws

@@ -1,0 +1,58 @@
+"""Fit speed: the sample session file, and a 1,000,000-row recording of the same kind of
+session (10 kHz presliding ramps, 2 kHz constant-velocity runs)."""
+
+from __future__ import annotations
+
+import io
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from identify.data import load_recording
+from identify.fit import fit_recordings
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def big_session(rows: int = 1_000_000) -> bytes:
+    import sys
+
+    sys.path.insert(0, str(ROOT))
+    from sample_data.generate import PRESLIDING_LEVELS, constant_velocity, force_ramps
+
+    cv = constant_velocity(rate=2000.0)
+    n_pre = rows - len(cv)
+    levels = PRESLIDING_LEVELS
+    duration = np.sum(np.abs(np.diff(levels))) / 2.0
+    t, x, f = force_ramps(levels, sample=duration / n_pre)
+    rng = np.random.default_rng(5)
+    pre = pd.DataFrame({"time": t, "position": x + rng.normal(0, 5e-8, len(t)), "torque": f})
+    cv = cv.assign(time=cv["time"] + t[-1] + 1e-3, position=cv["position"] + x[-1])
+    df = pd.concat([pre, cv], ignore_index=True).iloc[:rows]
+    buf = io.StringIO()
+    df.to_csv(buf, index=False, float_format="%.10g")
+    return buf.getvalue().encode()
+
+
+def bench_identification(quick: bool = False, progress=print) -> dict:
+    path = ROOT / "sample_data" / "session_mixed.csv"
+    t0 = time.perf_counter()
+    fit_recordings([load_recording(path)])
+    t_sample = time.perf_counter() - t0
+    rows = 200_000 if quick else 1_000_000
+    progress(f"making a {rows}-row recording")
+    content = big_session(rows)
+    progress("fitting it")
+    t0 = time.perf_counter()
+    rec = load_recording(content, name="big_session.csv")
+    res = fit_recordings([rec])
+    t_big = time.perf_counter() - t0
+    return {
+        "fit_sample_session_s": t_sample,
+        "fit_big_recording_s": t_big,
+        "fit_big_recording_rows": rows,
+        "fit_big_recording_levels": int(len(res.levels.velocity)),
+        "fit_big_recording_branches": int(res.n_branches),
+    }
