@@ -108,6 +108,18 @@ def cmd_fit(args) -> int:
     return 0
 
 
+def cmd_serve(args) -> int:
+    from app.server import serve
+
+    if args.data:
+        from pathlib import Path
+
+        if not Path(args.data).is_file():
+            raise UserError(f"--data: {args.data} is not a file")
+    serve(_params(args.params, None), host=args.host, port=args.port, data=args.data)
+    return 0
+
+
 def cmd_bench(args) -> int:
     from bench.simulator import run_all
 
@@ -123,6 +135,13 @@ def cmd_bench(args) -> int:
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="leuven-friction", description="Leuven integrated friction model: simulate, fit, explore.")
     sub = ap.add_subparsers(dest="command", required=True)
+
+    sv = sub.add_parser("serve", help="start the web explorer (viser)")
+    sv.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1)")
+    sv.add_argument("--port", type=int, default=8080, help="port (default 8080; 0 picks a free one)")
+    sv.add_argument("--params", help="parameter YAML to start from (default: the paper's KUKA IR 361 axis 1)")
+    sv.add_argument("--data", help="a CSV recording to fit at start")
+    sv.set_defaults(func=cmd_serve)
 
     s = sub.add_parser("simulate", help="run a paper experiment or drive the model with a recording")
     s.add_argument("--experiment", help="experiment name (see --list)")

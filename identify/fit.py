@@ -41,6 +41,7 @@ class FitResult:
     levels: Levels | None = None
     n_branches: int = 0
     notes: list = field(default_factory=list)
+    datasets: list = field(default_factory=list)
 
     def report(self) -> str:
         return fit_report(self)
@@ -118,7 +119,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     }
     say(1.0, "done")
     p = p.replace(uncertainty=unc, provenance=prov).validate()
-    return FitResult(p, stribeck_fit, tfit, levels, n_br, notes)
+    return FitResult(p, stribeck_fit, tfit, levels, n_br, notes, datasets)
 
 
 def fit_report(res: FitResult) -> str:

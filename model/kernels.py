@@ -23,8 +23,10 @@ from numba import njit
 # error_model="numpy": divisions follow IEEE rules instead of raising (no per-division check
 # in the hot loop). Small helpers are inlined at the Numba IR level: a call that passes
 # arrays otherwise costs reference counting on every step.
-kernel = njit(cache=True, error_model="numpy")
-helper = njit(cache=True, error_model="numpy", inline="always")
+# nogil: a long simulation in one thread (the web app's experiment tab) must not stall
+# another (its live plots).
+kernel = njit(cache=True, error_model="numpy", nogil=True)
+helper = njit(cache=True, error_model="numpy", inline="always", nogil=True)
 
 LEUVEN, LUGRE, STATIC = 0, 1, 2
 
