@@ -80,6 +80,46 @@ def cmd_simulate(args) -> int:
     return 0
 
 
+def _progress(frac, msg):
+    bar = "#" * int(round(20 * frac))
+    print(f"\r[{bar:20s}] {int(100 * frac):3d}% {msg:60s}", end="", file=sys.stderr, flush=True)
+
+
+def cmd_diagnose(args) -> int:
+    from identify.data import load_recording, parse_column_mapping
+    from identify.diagnose import diagnose
+    from identify.fit import fit_recordings
+    from identify.paramfile import save_params, write_atomic
+
+    cols = parse_column_mapping(args.columns)
+    rec = load_recording(args.data, columns=cols, require=("time", "position"))
+    if args.params:
+        params = _params(args.params, None)
+    else:
+        print("no --params: fitting the base model first", file=sys.stderr)
+        try:
+            params = fit_recordings([rec]).params
+        except ValueError as e:
+            raise UserError(f"diagnose: cannot fit a base model ({e}); give --params") from None
+    try:
+        d = diagnose(rec, params, progress=_progress)
+    except ValueError as e:
+        print(file=sys.stderr)
+        raise UserError(f"diagnose: {e}") from None
+    print(file=sys.stderr)
+    print(d.text())
+    if args.json:
+        write_atomic(args.json, json.dumps(d.summary(), indent=2) + "\n")
+    if args.html:
+        from app.report import diagnosis_html
+
+        write_atomic(args.html, diagnosis_html(d, args.data))
+    if args.out:
+        save_params(d.params_after, args.out)
+        print(f"model {'with ' + d.effect if d.effect else '(unchanged)'} -> {args.out}")
+    return 0
+
+
 def cmd_fit(args) -> int:
     from identify.data import load_recording, parse_column_mapping
     from identify.fit import fit_recordings
@@ -92,12 +132,8 @@ def cmd_fit(args) -> int:
         for note in r.notes:
             print(f"{r.source}: {note}", file=sys.stderr)
 
-    def progress(frac, msg):
-        bar = "#" * int(round(20 * frac))
-        print(f"\r[{bar:20s}] {int(100 * frac):3d}% {msg:60s}", end="", file=sys.stderr, flush=True)
-
     try:
-        res = fit_recordings(recs, base=base, n=args.n, fit_n=args.fit_n, progress=progress)
+        res = fit_recordings(recs, base=base, n=args.n, fit_n=args.fit_n, progress=_progress)
     except ValueError as e:
         print(file=sys.stderr)
         raise UserError(f"fit: {e}") from None
@@ -163,6 +199,15 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--n", type=float, default=7.0, help="exponent n of eq. (5) (default 7, as the paper)")
     f.add_argument("--fit-n", action="store_true", help="estimate n as well")
     f.set_defaults(func=cmd_fit)
+
+    d = sub.add_parser("diagnose", help="find the physical effect the model misses, add it, show the gap shrink")
+    d.add_argument("data", help="recorded CSV/TSV (time, position, and friction or applied force)")
+    d.add_argument("--params", help="current model (default: fit the base model to the data first)")
+    d.add_argument("--columns", help="column mapping, e.g. time=t,position=q,friction=F")
+    d.add_argument("--json", help="write the result (effect, rms_before, rms_after, regimes, candidates) as JSON")
+    d.add_argument("--html", help="write a self-contained HTML report")
+    d.add_argument("--out", help="write the extended model as YAML")
+    d.set_defaults(func=cmd_diagnose)
 
     b = sub.add_parser("bench", help="measure simulator (and fit) speed")
     b.add_argument("--quick", action="store_true", help="smaller problem sizes")

@@ -107,6 +107,11 @@ def build_client(client: viser.ClientHandle, initial: FrictionParams, initial_da
     with panel.add_tab("Experiment"):
         gui_exp_md = gui.add_markdown("Choose an experiment on the left.")
         gui_exp = gui.add_plotly(plots.hysteresis_figure([]), aspect=1.2, config=PLOT_CONFIG)
+    with panel.add_tab("Diagnose"):
+        gui_diag_md = gui.add_markdown("Upload a recording, then press *Diagnose* (left panel, *Data*): the workflow "
+                                       "looks for the physical effect the model misses, adds it and refits.")
+        gui_diag_plots = [gui.add_plotly(plots.hysteresis_figure([]), aspect=1.3, config=PLOT_CONFIG, visible=False)
+                          for _ in range(4)]
     with panel.add_tab("Fit"):
         gui_fit_md = gui.add_markdown("Upload a CSV recording (left panel, *Data*) to fit the model.")
         gui_fit_strib = gui.add_plotly(plots.stribeck_figure([]), aspect=1.2, config=PLOT_CONFIG, visible=False)
@@ -204,6 +209,7 @@ def build_client(client: viser.ClientHandle, initial: FrictionParams, initial_da
         gui_upload = gui.add_upload_button("Upload CSV", mime_type=".csv,.tsv,.txt,text/csv,text/plain", icon=None)
         gui_progress = gui.add_progress_bar(0.0, visible=False)
         gui_table = gui.add_markdown(params_table(initial))
+        gui_diagnose = gui.add_button("Diagnose", hint="find the effect the model misses in the uploaded data")
         gui_export = gui.add_button("Export YAML")
 
     # ------------------------------------------------------------ 3D: the joint during stick-slip
@@ -311,6 +317,7 @@ def build_client(client: viser.ClientHandle, initial: FrictionParams, initial_da
         finally:
             gui_progress.visible = False
         state["fit"] = res
+        state["recording"] = rec
         fitted = res.params.replace(model=gui_model.value)
         state["params"] = fitted
         set_controls(fitted)
@@ -326,6 +333,41 @@ def build_client(client: viser.ClientHandle, initial: FrictionParams, initial_da
         notify("Fit done", f"{name}: {len(res.levels.velocity)} velocity levels, {res.n_branches} presliding branches",
                "green")
         changed()
+
+    @gui_diagnose.on_click
+    def _(_):
+        from identify.diagnose import diagnose
+
+        rec = state.get("recording")
+        if rec is None:
+            notify("Nothing to diagnose", "Upload a CSV recording first.", "yellow")
+            return
+        gui_progress.visible = True
+        try:
+            d = diagnose(rec, state["params"].replace(model="leuven"),
+                         progress=lambda frac, msg: setattr(gui_progress, "value", 100.0 * frac))
+        except (DataError, ValueError, ParameterError) as e:
+            notify("Diagnosis failed", str(e), "red")
+            return
+        except Exception as e:
+            traceback.print_exc()
+            notify("Diagnosis failed", f"{type(e).__name__}: {e}", "red")
+            return
+        finally:
+            gui_progress.visible = False
+        with client.atomic():
+            gui_diag_md.content = f"```\n{d.text()}\n```"
+            for handle, fig in zip(gui_diag_plots, plots.diagnosis_figures(d)):
+                handle.figure = fig
+                handle.visible = True
+        if d.effect:
+            state["params"] = d.params_after
+            set_controls(d.params_after)
+            gui_table.content = params_table(d.params_after)
+            notify("Effect found", f"{d.effect}: RMS {d.rms_before:.3g} → {d.rms_after:.3g}", "green")
+            changed()
+        else:
+            notify("Nothing missing", "No significant effect: the model explains the data.", "blue")
 
     @gui_upload.on_upload
     def _(event):

@@ -17,9 +17,6 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def big_session(rows: int = 1_000_000) -> bytes:
-    import sys
-
-    sys.path.insert(0, str(ROOT))
     from sample_data.generate import PRESLIDING_LEVELS, constant_velocity, force_ramps
 
     cv = constant_velocity(rate=2000.0)

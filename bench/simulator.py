@@ -167,11 +167,9 @@ def bench_simulator(quick: bool = False, progress=print) -> dict:
 def run_all(quick: bool = False, progress=print) -> dict:
     results = {"simulator": bench_simulator(quick, progress)}
     flat = dict(results["simulator"])
-    try:
-        from bench.identification import bench_identification
-    except ImportError:
-        pass
-    else:
-        results["identification"] = bench_identification(quick, progress)
-        flat.update(results["identification"])
+    from bench.diagnosis import bench_diagnosis
+    from bench.identification import bench_identification
+
+    flat.update(bench_identification(quick, progress))
+    flat.update(bench_diagnosis(quick, progress))
     return flat

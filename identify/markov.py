@@ -44,10 +44,21 @@ def stribeck_plus_viscous(theta, v):
     return Fc + (Fs - Fc) * np.exp(-np.abs(v / vs) ** delta) + sigma2 * v
 
 
-def fit_side(levels: Levels, sign: int) -> SideFit:
+def _jacobian(theta, v):
+    """d(S(v) + σ2·v)/dθ for θ = (Fs, Fc, vs, delta, sigma2)."""
+    Fs, Fc, vs, delta, sigma2 = theta
+    a = np.abs(v / vs)
+    ad = a**delta
+    e = np.exp(-ad)
+    la = np.log(np.maximum(a, 1e-300))
+    return np.column_stack([e, 1.0 - e, (Fs - Fc) * e * ad * delta / vs, -(Fs - Fc) * e * ad * la, v])
+
+
+def fit_side(levels: Levels, sign: int, start: dict | None = None) -> SideFit:
     """Weighted least squares for one sign (scipy ``least_squares``, trust-region reflective).
 
-    Needs at least 6 levels (5 parameters and one degree of freedom)."""
+    Needs at least 6 levels (5 parameters and one degree of freedom). Without ``start`` it
+    tries nine starting points (S(v) has local minima in vs and δ); with one, only that."""
     m = levels.velocity * sign > 0
     v, F, var = levels.velocity[m], levels.friction[m], levels.variance[m]
     word = "positive" if sign > 0 else "negative"
@@ -76,13 +87,19 @@ def fit_side(levels: Levels, sign: int) -> SideFit:
     def resid(theta):
         return w * (F - stribeck_plus_viscous(theta, v))
 
+    def jac(theta):
+        return -w[:, None] * _jacobian(theta, v)
+
+    if start is not None:
+        starts = [np.clip([start[k] for k in NAMES], lo_b + 1e-12, hi_b - 1e-12)]
+    else:
+        starts = [np.clip([Fs0, Fc0, sign * vs0, d0, s2], lo_b + 1e-12, hi_b - 1e-12)
+                  for vs0 in np.quantile(a, [0.1, 0.3, 0.6]) for d0 in (0.5, 1.0, 2.0)]
     best = None
-    for vs0 in np.quantile(a, [0.1, 0.3, 0.6]):
-        for d0 in (0.5, 1.0, 2.0):
-            x0 = np.clip([Fs0, Fc0, sign * vs0, d0, s2], lo_b + 1e-12, hi_b - 1e-12)
-            r = least_squares(resid, x0, bounds=(lo_b, hi_b), method="trf", x_scale="jac")
-            if best is None or r.cost < best.cost:
-                best = r
+    for x0 in starts:
+        r = least_squares(resid, x0, jac=jac, bounds=(lo_b, hi_b), method="trf", x_scale="jac", max_nfev=2000)
+        if best is None or r.cost < best.cost:
+            best = r
     J = best.jac
     notes = []
     try:
@@ -105,6 +122,11 @@ def fit_side(levels: Levels, sign: int) -> SideFit:
     )
 
 
-def fit_stribeck(levels: Levels) -> dict:
-    """Both signs: {'positive': SideFit, 'negative': SideFit}."""
-    return {"positive": fit_side(levels, +1), "negative": fit_side(levels, -1)}
+def fit_stribeck(levels: Levels, start=None) -> dict:
+    """Both signs: {'positive': SideFit, 'negative': SideFit}; ``start`` optionally a
+    ``model.Stribeck`` to start from (one start instead of nine)."""
+    out = {}
+    for side, sign in (("positive", 1), ("negative", -1)):
+        st = None if start is None else {k: getattr(getattr(start, side), k) for k in NAMES}
+        out[side] = fit_side(levels, sign, st)
+    return out

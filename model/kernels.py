@@ -107,6 +107,12 @@ def transition_slope(kind, tz, tF, z):
 
 
 @kernel
+def transition_curve_array(kind, tz, tF, z, out):
+    for i in range(z.shape[0]):
+        out[i] = transition_curve(kind, tz, tF, z[i])
+
+
+@kernel
 def transition_curve_inverse(kind, tz, tF, F):
     """F_d^{-1}(F): needed by loop closing and reset."""
     if kind == 0:

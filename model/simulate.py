@@ -163,5 +163,9 @@ def stribeck_curve(params: FrictionParams, v) -> np.ndarray:
 
 
 def transition_curve_values(params: FrictionParams, z) -> np.ndarray:
+    """F_d(z), vectorised."""
     kind, tz, tF = params.transition_curve.kernel_arrays()
-    return np.array([K.transition_curve(kind, tz, tF, float(zi)) for zi in np.atleast_1d(z)])
+    z = np.ascontiguousarray(np.atleast_1d(z), dtype=np.float64)
+    out = np.empty_like(z)
+    K.transition_curve_array(kind, tz, tF, z, out)
+    return out

@@ -136,3 +136,16 @@ def test_latency_benchmark_runs(chromium, app_url):
     (ARTIFACTS / "app_latency.json").write_text(json.dumps(
         {"median_ms": float(np.median(lat)), "p95_ms": float(np.percentile(lat, 95)), "samples_ms": lat}, indent=2))
     page.close()
+
+
+def test_diagnose_tab_names_the_effect(chromium, app_url):
+    page = open_app(chromium, app_url)
+    upload_input(page).set_input_files(str(ROOT / "sample_data" / "effect_position_periodic.csv"))
+    page.wait_for_selector("text=Fit done", timeout=120_000)
+    page.get_by_role("button", name="Diagnose").click()
+    page.wait_for_selector("text=Effect found", timeout=180_000)
+    page.get_by_role("tab", name="Diagnose").click()
+    page.wait_for_selector("text=Missing effect: position_periodic", timeout=30_000)
+    wait_plot(page, "Measured and simulated friction", None)
+    shot(page, "diagnose_tab")
+    page.close()
