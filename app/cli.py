@@ -7,8 +7,6 @@ import io
 import json
 import sys
 
-import numpy as np
-
 
 class UserError(Exception):
     """A mistake of the user's: printed as one line, exit status 2."""

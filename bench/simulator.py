@@ -170,6 +170,6 @@ def run_all(quick: bool = False, progress=print) -> dict:
     from bench.diagnosis import bench_diagnosis
     from bench.identification import bench_identification
 
-    flat.update(bench_identification(quick, progress))
     flat.update(bench_diagnosis(quick, progress))
+    flat.update(bench_identification(quick, progress))
     return flat

@@ -318,7 +318,9 @@ def solve_state_equation(p, kind, tz, tF, z0, dx, D):
     z = z0 + dx * (1.0 - ph0)
     if z < lo or z > hi:
         z = 0.5 * (lo + hi)
-    tol = 1e-11 * abs(dx) + 1e-300
+    # 1e-7 of the step: far below the O(dt) error of the time step itself, and usually reached
+    # by the first Newton correction of the explicit guess
+    tol = 1e-7 * abs(dx) + 1e-300
     n = p[P_N]
     for _ in range(60):
         fd = transition_curve(kind, tz, tF, z)

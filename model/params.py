@@ -248,6 +248,8 @@ class FrictionParams:
             if not isinstance(tcd, dict):
                 raise ParameterError("transition_curve: expected a mapping")
             kind = tcd.get("kind", "piecewise_linear")
+            if kind not in TRANSITION_KINDS:
+                raise ParameterError(f"transition_curve.kind: must be one of {', '.join(TRANSITION_KINDS)}, got {kind!r}")
             if kind == "piecewise_linear":
                 for k in ("z", "F"):
                     if not isinstance(tcd.get(k), (list, tuple)):
@@ -265,6 +267,15 @@ class FrictionParams:
         effects = d.get("effects") or []
         if not isinstance(effects, list):
             raise ParameterError("effects: expected a list")
+        from .effects import EFFECTS
+
+        for i, eff in enumerate(effects):
+            if not isinstance(eff, dict) or eff.get("name") not in EFFECTS:
+                raise ParameterError(f"effects.{i}.name: must be one of {', '.join(EFFECTS)}")
+            if not isinstance(eff.get("params"), dict):
+                raise ParameterError(f"effects.{i}.params: expected a mapping of parameter values")
+            for k, v in eff["params"].items():
+                _finite(f"effects.{i}.params.{k}", v)
         unc = d.get("uncertainty") or {}
         if not isinstance(unc, dict):
             raise ParameterError("uncertainty: expected a mapping of dotted paths to 1-sigma values")

@@ -2,7 +2,6 @@
 and the integrator's step-size convergence at the stiffness after a reversal."""
 
 import numpy as np
-import pytest
 
 from model import simulate_force
 from model.experiments import breakaway, frictional_lag, stick_slip, tracking

@@ -34,6 +34,8 @@ BAD = [
                    "negative": {"Fs": 63, "Fc": -52, "vs": -0.004, "delta": 0.9, "sigma2": 8}}}, "stribeck.negative.Fs"),
     ({"sigma1": float("nan")}, "sigma1: must be finite"),
     ({"inertia": "heavy"}, "inertia: expected a number"),
+    ({"effects": [{"name": "gremlins", "params": {}}]}, "effects.0.name"),
+    ({"transition_curve": {"kind": "cubic", "z": [0, 1]}}, "transition_curve.kind"),
 ]
 
 
