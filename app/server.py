@@ -20,6 +20,7 @@ from __future__ import annotations
 import threading
 import time
 import traceback
+from pathlib import Path
 
 import numpy as np
 import viser
@@ -446,16 +447,12 @@ def serve(params: FrictionParams, host: str = "127.0.0.1", port: int = 8080, dat
           ready=None) -> None:
     """Run the explorer until interrupted. ``ready(url)`` is called once it listens."""
     server = viser.ViserServer(host=host, port=port, verbose=False)
-    data_bytes = None
-    if data:
-        from pathlib import Path
-
-        data_bytes = Path(data).read_bytes()
+    data_bytes = Path(data).read_bytes() if data else None
     stops = {}
 
     @server.on_client_connect
     def _(client: viser.ClientHandle) -> None:
-        stops[client.client_id] = build_client(client, params, data_bytes, data.split("/")[-1] if data else "data.csv")
+        stops[client.client_id] = build_client(client, params, data_bytes, Path(data).name if data else "data.csv")
 
     @server.on_client_disconnect
     def _(client: viser.ClientHandle) -> None:
