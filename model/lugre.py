@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from .kernels import transition_curve, transition_curve_inverse
+from .kernels import transition_curve_array, transition_curve_inverse
 
 
 def lugre_sigma0_from_transition_curve(p, n_grid: int = 400) -> float:
@@ -25,7 +25,8 @@ def lugre_sigma0_from_transition_curve(p, n_grid: int = 400) -> float:
     span = fs_pos - p.stribeck.negative.Fs
     x_end = transition_curve_inverse(kind, tz, tF, span)
     x = np.linspace(0.0, x_end, n_grid)
-    target = np.array([transition_curve(kind, tz, tF, xi) for xi in x])
+    target = np.empty_like(x)
+    transition_curve_array(kind, tz, tF, x, target)
 
     def cost(log_sigma0: float) -> float:
         s0 = np.exp(log_sigma0)
