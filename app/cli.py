@@ -71,7 +71,15 @@ def cmd_simulate(args) -> int:
     rec = load_recording(args.input, columns=cols, require=need)
     if args.drive == "displacement":
         r = simulate_displacement(params, rec.time, rec.position)
+        if params.effects:
+            # a model extended by the diagnosis predicts with its effects (the same code path)
+            from identify.diagnose import model_with_effects
+
+            r.friction_force = model_with_effects(params, rec)
     else:
+        if params.effects:
+            print("note: the model's diagnosed effects apply to displacement driving only; ignored here",
+                  file=sys.stderr)
         r = simulate_force(params, rec.time, rec.force)
     _write_csv(_frame([r], [params.model]), args.out)
     print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}")

@@ -70,6 +70,16 @@ def test_diagnose_cli_json_and_self_contained_html(tmp_path):
     from identify.paramfile import load_params
 
     assert load_params(out_yaml).effects[-1]["name"] == "position_periodic"
+    # the extended model, driven by the recorded motion, reproduces the gap the report states
+    pred = tmp_path / "pred.csv"
+    r = subprocess.run([sys.executable, "-m", "app.cli", "simulate", "--input", str(data), "--drive", "displacement",
+                        "--params", str(out_yaml), "--out", str(pred)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    import numpy as np
+    import pandas as pd
+
+    rms = float(np.sqrt(np.mean((pd.read_csv(pred)["friction_force"].to_numpy() - df["friction"].to_numpy()) ** 2)))
+    assert rms == pytest.approx(res["rms_after"], rel=0.02)
 
 
 def test_diagnose_cli_bad_input_is_one_line(tmp_path):
