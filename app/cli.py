@@ -7,14 +7,16 @@ import io
 import json
 import sys
 
+from ..model.errors import FrictionError
 
-class UserError(Exception):
-    """A mistake of the user's: printed as one line, exit status 2."""
+
+class UserError(FrictionError):
+    """A mistake in the command line itself: printed as one line, exit status 2."""
 
 
 def _params(path: str | None, model: str | None):
-    from identify.paramfile import load_params
-    from model import as_model, default_params
+    from ..identify.paramfile import load_params
+    from ..model import as_model, default_params
 
     p = load_params(path) if path else default_params()
     return as_model(p, model) if model else p
@@ -33,7 +35,7 @@ def _frame(result_runs, labels):
 
 
 def _write_csv(df, path: str) -> None:
-    from identify.paramfile import write_atomic
+    from ..identify.paramfile import write_atomic
 
     buf = io.StringIO()
     df.to_csv(buf, index=False, float_format="%.10g")
@@ -44,8 +46,8 @@ def _write_csv(df, path: str) -> None:
 
 
 def cmd_simulate(args) -> int:
-    from model.experiments import EXPERIMENTS, run_experiment
-    from model.simulate import simulate_displacement, simulate_force
+    from ..model.experiments import EXPERIMENTS, run_experiment
+    from ..model.simulate import simulate_displacement, simulate_force
 
     if args.list:
         for name, (_, text) in EXPERIMENTS.items():
@@ -64,7 +66,7 @@ def cmd_simulate(args) -> int:
         return 0
     if not args.input:
         raise UserError("simulate: give --experiment NAME, --input REC.csv or --list")
-    from identify.data import load_recording, parse_column_mapping
+    from ..identify.data import load_recording, parse_column_mapping
 
     cols = parse_column_mapping(args.columns)
     need = ("time", "position") if args.drive == "displacement" else ("time", "force")
@@ -73,7 +75,7 @@ def cmd_simulate(args) -> int:
         r = simulate_displacement(params, rec.time, rec.position)
         if params.effects:
             # a model extended by the diagnosis predicts with its effects (the same code path)
-            from identify.diagnose import model_with_effects
+            from ..identify.diagnose import model_with_effects
 
             r.friction_force = model_with_effects(params, rec)
     else:
@@ -92,10 +94,10 @@ def _progress(frac, msg):
 
 
 def cmd_diagnose(args) -> int:
-    from identify.data import load_recording, parse_column_mapping
-    from identify.diagnose import diagnose
-    from identify.fit import fit_recordings
-    from identify.paramfile import save_params, write_atomic
+    from ..identify.data import load_recording, parse_column_mapping
+    from ..identify.diagnose import diagnose
+    from ..identify.fit import fit_recordings
+    from ..identify.paramfile import save_params, write_atomic
 
     cols = parse_column_mapping(args.columns)
     rec = load_recording(args.data, columns=cols, require=("time", "position"))
@@ -105,11 +107,11 @@ def cmd_diagnose(args) -> int:
         print("no --params: fitting the base model first", file=sys.stderr)
         try:
             params = fit_recordings([rec]).params
-        except ValueError as e:
+        except FrictionError as e:
             raise UserError(f"diagnose: cannot fit a base model ({e}); give --params") from None
     try:
         d = diagnose(rec, params, progress=_progress)
-    except ValueError as e:
+    except FrictionError as e:
         print(file=sys.stderr)
         raise UserError(f"diagnose: {e}") from None
     print(file=sys.stderr)
@@ -117,7 +119,7 @@ def cmd_diagnose(args) -> int:
     if args.json:
         write_atomic(args.json, json.dumps(d.summary(), indent=2) + "\n")
     if args.html:
-        from app.report import diagnosis_html
+        from .report import diagnosis_html
 
         write_atomic(args.html, diagnosis_html(d, args.data))
     if args.out:
@@ -127,9 +129,9 @@ def cmd_diagnose(args) -> int:
 
 
 def cmd_fit(args) -> int:
-    from identify.data import load_recording, parse_column_mapping
-    from identify.fit import fit_recordings
-    from identify.paramfile import save_params
+    from ..identify.data import load_recording, parse_column_mapping
+    from ..identify.fit import fit_recordings
+    from ..identify.paramfile import save_params
 
     cols = parse_column_mapping(args.columns)
     base = _params(args.params, None)
@@ -140,7 +142,7 @@ def cmd_fit(args) -> int:
 
     try:
         res = fit_recordings(recs, base=base, n=args.n, fit_n=args.fit_n, progress=_progress)
-    except ValueError as e:
+    except FrictionError as e:
         print(file=sys.stderr)
         raise UserError(f"fit: {e}") from None
     print(file=sys.stderr)
@@ -151,7 +153,7 @@ def cmd_fit(args) -> int:
 
 
 def cmd_serve(args) -> int:
-    from app.server import serve
+    from .server import serve
 
     if args.data:
         from pathlib import Path
@@ -168,7 +170,7 @@ def cmd_bench(args) -> int:
     results = run_all(quick=args.quick, progress=lambda msg: print(msg, file=sys.stderr))
     print(json.dumps(results, indent=2))
     if args.json:
-        from identify.paramfile import write_atomic
+        from ..identify.paramfile import write_atomic
 
         write_atomic(args.json, json.dumps(results, indent=2) + "\n")
     return 0
@@ -223,13 +225,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    from identify.data import DataError
-    from model import ParameterError
-
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except (UserError, DataError, ParameterError) as e:
+    except FrictionError as e:  # the user's mistakes only; a bug still shows as a bug
         print(f"error: {e}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

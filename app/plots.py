@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import plotly.graph_objects as go
 
-from model import stribeck_curve
-from model.experiments import ExperimentResult
+from ..model import stribeck_curve
+from ..model.experiments import ExperimentResult
 
 COLORS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b")
 MAX_POINTS = 1000
@@ -137,7 +137,7 @@ def experiment_figure(res: ExperimentResult, units: dict | None = None) -> go.Fi
 
 def transition_fit_figure(fit, datasets, units: dict | None = None) -> go.Figure:
     """Presliding branches (measured displacement minus offset) over the fitted curve."""
-    from identify.mle import branch_displacement
+    from ..identify.mle import branch_displacement
 
     u = units or {"position": "rad", "force": "N*m"}
     fig = _Fig()

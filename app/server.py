@@ -25,11 +25,11 @@ from pathlib import Path
 import numpy as np
 import viser
 
-from identify.data import DataError, load_recording
-from identify.fit import fit_recordings
-from identify.paramfile import params_to_yaml
-from model import FrictionParams, ParameterError, Stribeck, StribeckSide, TransitionCurve, as_model
-from model.experiments import EXPERIMENTS, abcd_ramp, run_experiment, stick_slip
+from ..identify.data import DataError, load_recording
+from ..identify.fit import fit_recordings
+from ..identify.paramfile import params_to_yaml
+from ..model import FrictionParams, ParameterError, Stribeck, StribeckSide, TransitionCurve, as_model
+from ..model.experiments import EXPERIMENTS, abcd_ramp, run_experiment, stick_slip
 
 from . import plots
 
@@ -197,7 +197,7 @@ def build_client(client: viser.ClientHandle, initial: FrictionParams, initial_da
 
     tc0 = initial.transition_curve
     if tc0.kind != "piecewise_linear":
-        from model.simulate import transition_curve_values
+        from ..model.simulate import transition_curve_values
 
         zk = np.array([0.0, 0.02, 0.2, 0.5, 1.0]) * 6 * tc0.shape["z0"]
         tc0 = TransitionCurve(z=tuple(zk), F=tuple(transition_curve_values(initial, zk)))
@@ -337,7 +337,7 @@ def build_client(client: viser.ClientHandle, initial: FrictionParams, initial_da
 
     @gui_diagnose.on_click
     def _(_):
-        from identify.diagnose import diagnose
+        from ..identify.diagnose import diagnose
 
         rec = state.get("recording")
         if rec is None:

@@ -32,7 +32,7 @@ PLOT_SIGNATURE = """(title) => {
 @contextmanager
 def running_server(*extra_args, timeout: float = 60.0):
     """Start ``leuven-friction serve --port 0`` in a subprocess; yield its URL."""
-    proc = subprocess.Popen([sys.executable, "-m", "app.cli", "serve", "--port", "0", *extra_args],
+    proc = subprocess.Popen([sys.executable, "-m", "leuven_friction.app.cli", "serve", "--port", "0", *extra_args],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     url = None
     t0 = time.time()

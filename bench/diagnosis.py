@@ -6,13 +6,13 @@ from __future__ import annotations
 import io
 import time
 
-from identify.data import load_recording
-from identify.diagnose import diagnose
-from identify.fit import fit_recordings
+from leuven_friction.identify.data import load_recording
+from leuven_friction.identify.diagnose import diagnose
+from leuven_friction.identify.fit import fit_recordings
 
 
 def bench_diagnosis(quick: bool = False, progress=print) -> dict:
-    from sample_data.generate_effects import make_recording
+    from synth.effects import make_recording
 
     samples = 100_000
     df, _ = make_recording("position_periodic", seed=5, samples=samples)

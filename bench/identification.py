@@ -10,14 +10,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from identify.data import load_recording
-from identify.fit import fit_recordings
+from leuven_friction.identify.data import load_recording
+from leuven_friction.identify.fit import fit_recordings
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
 def big_session(rows: int = 1_000_000) -> bytes:
-    from sample_data.generate import PRESLIDING_LEVELS, constant_velocity, force_ramps
+    from synth.samples import PRESLIDING_LEVELS, constant_velocity, force_ramps
 
     cv = constant_velocity(rate=2000.0)
     n_pre = rows - len(cv)

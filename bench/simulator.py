@@ -18,9 +18,9 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from model import default_params, initial_state, simulate_displacement
-from model import kernels as K
-from model.simulate import pack
+from leuven_friction.model import default_params, initial_state, simulate_displacement
+from leuven_friction.model import kernels as K
+from leuven_friction.model.simulate import pack
 
 DT = 1e-4
 
@@ -131,7 +131,7 @@ def bench_simulator(quick: bool = False, progress=print) -> dict:
 
     # force-driven plant (eq. (8)), A -> B -> C -> D style ramp repeated
     f = 30.0 * np.sin(2 * np.pi * 0.05 * t) + 5.0 * np.sin(2 * np.pi * 0.37 * t)
-    from model import simulate_force
+    from leuven_friction.model import simulate_force
 
     simulate_force(leuven, t[:100], f[:100])
     force_rate, _ = _rate(lambda: simulate_force(leuven, t, f), n_steps, repeat=1)

@@ -18,6 +18,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .errors import DataError
+
 SIGNALS = ("time", "position", "force", "velocity", "friction", "normal_load", "temperature")
 
 ALIASES = {
@@ -43,10 +45,6 @@ UNITS = {
 }
 
 MIN_SAMPLES = 10
-
-
-class DataError(ValueError):
-    """Recorded data that cannot be used; the message names file, column and row."""
 
 
 @dataclass

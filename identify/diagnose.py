@@ -23,8 +23,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
-from model import FrictionParams, Stribeck, StribeckSide, simulate_displacement, transition_curve_values
-from model.effects import (EFFECTS, SHAPE, Signals, apply_effects, basis, direction_scaled_path, reversal_count,
+from ..model import FrictionParams, Stribeck, StribeckSide, simulate_displacement, transition_curve_values
+from ..model.effects import (EFFECTS, SHAPE, Signals, apply_effects, basis, direction_scaled_path, reversal_count,
                            stiffness_scaled)
 
 from .data import DataError, Recording, velocity_of

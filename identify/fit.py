@@ -12,12 +12,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
+from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
 
 from .data import Recording
 from .markov import NAMES, Levels, fit_stribeck
 from .mle import PreslidingData, fit_transition_curve
 from .segment import constant_velocity_levels, detect_noise, presliding_branches
+from .errors import IdentificationError
 
 KNOT_FORCE_FRACTIONS = (0.2, 0.45, 0.7, 1.0)
 
@@ -91,7 +92,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     else:
         notes.append("transition curve not fitted: no presliding force ramps found; kept the parameter file's curve")
     if stribeck_fit is None and tfit is None:
-        raise ValueError("nothing to fit: the data hold neither constant-velocity levels in both directions "
+        raise IdentificationError("nothing to fit: the data hold neither constant-velocity levels in both directions "
                          "nor presliding force ramps")
     unc = {}
     if stribeck_fit:

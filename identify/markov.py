@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
+from .errors import IdentificationError
+
 NAMES = ("Fs", "Fc", "vs", "delta", "sigma2")
 
 
@@ -63,7 +65,7 @@ def fit_side(levels: Levels, sign: int, start: dict | None = None) -> SideFit:
     v, F, var = levels.velocity[m], levels.friction[m], levels.variance[m]
     word = "positive" if sign > 0 else "negative"
     if len(v) < 6:
-        raise ValueError(f"Markov estimator: only {len(v)} constant-velocity level(s) with {word} velocity; need at least 6")
+        raise IdentificationError(f"Markov estimator: only {len(v)} constant-velocity level(s) with {word} velocity; need at least 6")
     w = 1.0 / np.sqrt(np.maximum(var, 1e-18 * np.max(np.abs(F)) ** 2))
     order = np.argsort(np.abs(v))
     v, F, w = v[order], F[order], w[order]

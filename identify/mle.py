@@ -23,6 +23,8 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.special import log_ndtr
 
+from .errors import IdentificationError
+
 GRID = 400  # force grid per branch for the displacement integral
 
 
@@ -140,7 +142,7 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
         raise ValueError("transition curve knots: abscissas must start at 0 and increase strictly")
     branches = [br for ds in datasets for br in ds.branches]
     if not branches:
-        raise ValueError("maximum-likelihood estimator: no presliding branches in the data")
+        raise IdentificationError("maximum-likelihood estimator: no presliding branches in the data")
     nk = len(z_knots) - 1
     if F_start is None:
         # the force at which the longest branch has moved z_i (z ≈ x while F_d ≪ D)

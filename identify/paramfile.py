@@ -8,7 +8,7 @@ from pathlib import Path
 
 import yaml
 
-from model import FrictionParams, ParameterError
+from ..model import FrictionParams, ParameterError
 
 
 def load_params(path: str | os.PathLike) -> FrictionParams:

@@ -12,6 +12,7 @@ import numpy as np
 from .data import Recording, velocity_of
 from .markov import Levels
 from .mle import Branch, Gaussian, Quantized
+from .errors import IdentificationError
 
 
 def _smooth(a, w):
@@ -30,7 +31,7 @@ def constant_velocity_levels(rec: Recording, *, rel_tol: float = 0.03, min_sampl
     (at constant velocity I·ẍ = 0, so f = F)."""
     F = rec.friction if rec.friction is not None else rec.force
     if F is None:
-        raise ValueError(f"{rec.source}: needs a force or friction column for constant-velocity levels")
+        raise IdentificationError(f"{rec.source}: needs a force or friction column for constant-velocity levels")
     v = _smooth(velocity_of(rec), 9)
     w = 10
     steady = np.abs(v) > v_floor
@@ -85,7 +86,7 @@ def presliding_branches(rec: Recording, Fs_pos: float, Fs_neg: float, *, v_max: 
     internal loop (passing the older turning point), since past it the path follows an older
     curve. D = F_s(direction) − F_b with F_b the force at the reversal."""
     if rec.force is None or rec.position is None:
-        raise ValueError(f"{rec.source}: presliding branches need position and applied force columns")
+        raise IdentificationError(f"{rec.source}: presliding branches need position and applied force columns")
     f = rec.force
     fs = _smooth(f, 5)
     df = np.sign(np.diff(fs))

@@ -4,9 +4,9 @@ Al-Bender, Ganseman, Prajogo), LuGre and the static Coulomb + viscous + Stribeck
 Pure computation: no file I/O, no user interface, no imports from ``identify`` or ``app``.
 """
 
+from .errors import FrictionError, ParameterError, SignalError
 from .params import (
     FrictionParams,
-    ParameterError,
     Stribeck,
     StribeckSide,
     TransitionCurve,
@@ -25,7 +25,7 @@ from .simulate import (
 )
 
 __all__ = [
-    "COLUMNS", "FrictionParams", "ParameterError", "SimResult", "Stribeck", "StribeckSide", "TransitionCurve",
+    "COLUMNS", "FrictionError", "FrictionParams", "ParameterError", "SignalError", "SimResult", "Stribeck", "StribeckSide", "TransitionCurve",
     "as_model", "default_params", "initial_state", "simulate_closed_loop", "simulate_displacement",
     "simulate_force", "stribeck_curve", "transition_curve_values",
 ]

@@ -13,12 +13,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .errors import ParameterError
+
 MODEL_KINDS = ("leuven", "lugre", "static")
 TRANSITION_KINDS = ("piecewise_linear", "tanh_linear")
-
-
-class ParameterError(ValueError):
-    """A parameter value breaks a rule of the model; the message names the field."""
 
 
 def _finite(path: str, value) -> float:

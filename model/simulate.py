@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import kernels as K
+from .errors import SignalError
 from .params import FrictionParams
 
 COLUMNS = ("time", "position", "velocity", "applied_force", "friction_force", "hysteresis_force", "z")
@@ -81,21 +82,21 @@ def memory_summary(st: np.ndarray) -> dict:
 def _time(t) -> np.ndarray:
     t = np.ascontiguousarray(t, dtype=np.float64)
     if t.ndim != 1 or len(t) < 2:
-        raise ValueError(f"time: need a 1-D series of at least 2 samples, got shape {t.shape}")
+        raise SignalError(f"time: need a 1-D series of at least 2 samples, got shape {t.shape}")
     if not np.all(np.isfinite(t)):
-        raise ValueError(f"time: non-finite value at sample {int(np.argmin(np.isfinite(t)))}")
+        raise SignalError(f"time: non-finite value at sample {int(np.argmin(np.isfinite(t)))}")
     bad = np.flatnonzero(np.diff(t) <= 0)
     if len(bad):
-        raise ValueError(f"time: must increase strictly, but sample {bad[0] + 1} is not after sample {bad[0]}")
+        raise SignalError(f"time: must increase strictly, but sample {bad[0] + 1} is not after sample {bad[0]}")
     return t
 
 
 def _series(name: str, a, n: int) -> np.ndarray:
     a = np.ascontiguousarray(a, dtype=np.float64)
     if a.shape != (n,):
-        raise ValueError(f"{name}: expected {n} samples like time, got shape {a.shape}")
+        raise SignalError(f"{name}: expected {n} samples like time, got shape {a.shape}")
     if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name}: non-finite value at sample {int(np.argmin(np.isfinite(a)))}")
+        raise SignalError(f"{name}: non-finite value at sample {int(np.argmin(np.isfinite(a)))}")
     return a
 
 
@@ -140,7 +141,7 @@ def simulate_closed_loop(params: FrictionParams, t, x_ref, *, kp: float, ki: flo
     x_ref = _series("x_ref", x_ref, len(t))
     ff = np.zeros(len(t)) if feedforward is None else _series("feedforward", feedforward, len(t))
     if ctrl_every < 1:
-        raise ValueError(f"ctrl_every: must be >= 1, got {ctrl_every}")
+        raise SignalError(f"ctrl_every: must be >= 1, got {ctrl_every}")
     code, p, kind, tz, tF = pack(params)
     st = initial_state(params) if state is None else state
     n = len(t)

@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from model import default_params
+from leuven_friction.model import default_params
 
 
 @pytest.fixture(scope="session")
@@ -17,3 +17,16 @@ def kuka_lugre():
 @pytest.fixture
 def rng():
     return np.random.default_rng(12345)
+
+
+# The suite's kinds are its folders: unit/ and integration/ run by default (`pytest -q`),
+# slow/ (Monte Carlo, hidden-effect suites) and browser/ (real chromium) are marked here and
+# selected with `pytest -m slow` / `pytest -m browser` (see `.ci/run`).
+_KIND_OF_FOLDER = {"slow": pytest.mark.slow, "browser": pytest.mark.browser}
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        folder = item.path.parent.name
+        if folder in _KIND_OF_FOLDER:
+            item.add_marker(_KIND_OF_FOLDER[folder])

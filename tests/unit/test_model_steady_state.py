@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from model import as_model, simulate_displacement, stribeck_curve
-from model.experiments import constant_velocity_sweep
+from leuven_friction.model import as_model, simulate_displacement, stribeck_curve
+from leuven_friction.model.experiments import constant_velocity_sweep
 
 VELOCITIES = [0.001, 0.004, 0.02, 0.3, -0.001, -0.004, -0.02, -0.3]
 

@@ -1,5 +1,5 @@
 """Recordings with a hidden effect, for testing the discrepancy workflow (``leuven-friction
-diagnose``). ``python sample_data/generate_effects.py [--all]`` writes the example CSV (or
+diagnose``). ``python synth/effects.py [--all]`` writes the example CSV (or
 one per effect and the control).
 
 A recording is a prescribed motion (a tribometer or a servo-driven slide) with the friction
@@ -19,10 +19,10 @@ import numpy as np
 import pandas as pd
 from scipy.signal import lfilter
 
-from model import Stribeck, StribeckSide, default_params, simulate_displacement, transition_curve_values
-from model.effects import stiffness_scaled
+from leuven_friction.model import Stribeck, StribeckSide, default_params, simulate_displacement, transition_curve_values
+from leuven_friction.model.effects import stiffness_scaled
 
-HERE = Path(__file__).parent
+HERE = Path(__file__).resolve().parent.parent / "sample_data"
 SPEEDS = (0.003, 0.006, 0.012, 0.025, 0.05, 0.1, 0.2, 0.4)
 EFFECT_NAMES = ("position_periodic", "position_smooth", "time_drift", "normal_load", "sign_asymmetry",
                 "viscous_shape", "presliding_stiffness", "cyclic_softening", "frictional_lag")

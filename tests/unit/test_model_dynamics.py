@@ -3,8 +3,8 @@ and the integrator's step-size convergence at the stiffness after a reversal."""
 
 import numpy as np
 
-from model import simulate_force
-from model.experiments import breakaway, frictional_lag, stick_slip, tracking
+from leuven_friction.model import simulate_force
+from leuven_friction.model.experiments import breakaway, frictional_lag, stick_slip, tracking
 
 
 def test_breakaway_force_decreases_with_force_rate(kuka):

@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from model import initial_state, simulate_displacement, simulate_force, transition_curve_values
-from model import kernels as K
-from model.experiments import abcd_ramp
-from model.simulate import memory_summary, pack
+from leuven_friction.model import initial_state, simulate_displacement, simulate_force, transition_curve_values
+from leuven_friction.model import kernels as K
+from leuven_friction.model.experiments import abcd_ramp
+from leuven_friction.model.simulate import memory_summary, pack
 
 
 def _path(points, n_per_leg=2000):
@@ -113,7 +113,7 @@ def test_lugre_does_not_close_and_dissipates_more(kuka, kuka_lugre):
 
 
 def test_lugre_symmetric_ramp_loop_closes_only_for_symmetric_extremes():
-    from model.experiments import abcd_ramp, canudas_lugre_params, symmetric_ramp
+    from leuven_friction.model.experiments import abcd_ramp, canudas_lugre_params, symmetric_ramp
 
     p = canudas_lugre_params()  # Fig. 1 uses the classic parameters of Canudas de Wit et al.
     a, rate = 1.2, 0.5

@@ -16,7 +16,7 @@ pytestmark = [
     pytest.mark.skipif(not os.path.exists(CHROMIUM) and not os.environ.get("CI"), reason="chromium not installed"),
 ]
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = ROOT / "artifacts"
 HYST = "Presliding hysteresis"
 
@@ -68,7 +68,7 @@ def test_slider_changes_hysteresis_plot(chromium, app_url):
 
 
 def test_upload_fits_and_export_yaml_loads_back(chromium, app_url, tmp_path):
-    from identify.paramfile import load_params
+    from leuven_friction.identify.paramfile import load_params
 
     page = open_app(chromium, app_url)
     upload_input(page).set_input_files(str(ROOT / "sample_data" / "session_mixed.csv"))

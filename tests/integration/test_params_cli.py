@@ -8,12 +8,12 @@ import pandas as pd
 import pytest
 import yaml
 
-from identify.paramfile import load_params, save_params
-from model import FrictionParams, ParameterError, default_params, simulate_force
+from leuven_friction.identify.paramfile import load_params, save_params
+from leuven_friction.model import FrictionParams, ParameterError, default_params, simulate_force
 
 
 def cli(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "app.cli", *args], capture_output=True, text=True, cwd=cwd)
+    return subprocess.run([sys.executable, "-m", "leuven_friction.app.cli", *args], capture_output=True, text=True, cwd=cwd)
 
 
 def test_yaml_round_trip_preserves_model(tmp_path, kuka):
@@ -84,7 +84,7 @@ def test_cli_simulate_input_uses_recorded_position(tmp_path, kuka):
     assert r.returncode == 0, r.stderr
     pred = pd.read_csv(out)
     np.testing.assert_allclose(pred["position"], x, atol=1e-12)  # mrad converted to rad
-    from model import simulate_displacement
+    from leuven_friction.model import simulate_displacement
 
     np.testing.assert_allclose(pred["friction_force"], simulate_displacement(kuka, t, x).friction_force, rtol=1e-8, atol=1e-8)
 

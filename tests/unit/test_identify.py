@@ -5,9 +5,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from identify.data import DataError, load_recording
-from identify.markov import Levels, fit_stribeck, stribeck_plus_viscous
-from identify.mle import Branch, Gaussian, PreslidingData, Quantized, branch_displacement, fit_transition_curve, \
+from leuven_friction.identify.data import DataError, load_recording
+from leuven_friction.identify.markov import Levels, fit_stribeck, stribeck_plus_viscous
+from leuven_friction.identify.mle import Branch, Gaussian, PreslidingData, Quantized, branch_displacement, fit_transition_curve, \
     fit_transition_curve_unweighted
 
 TRUE = {"positive": (36.0, 27.0, 0.007, 0.5, 7.7), "negative": (-63.0, -52.0, -0.004, 0.9, 8.0)}
@@ -111,10 +111,10 @@ def test_fit_cli_writes_loadable_yaml_and_nothing_on_error(tmp_path):
     import subprocess
     import sys
 
-    from identify.paramfile import load_params
+    from leuven_friction.identify.paramfile import load_params
 
     out = tmp_path / "p.yaml"
-    r = subprocess.run([sys.executable, "-m", "app.cli", "fit", "sample_data/constant_velocity.csv", "--out", str(out)],
+    r = subprocess.run([sys.executable, "-m", "leuven_friction.app.cli", "fit", "sample_data/constant_velocity.csv", "--out", str(out)],
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     p = load_params(out)
@@ -123,7 +123,7 @@ def test_fit_cli_writes_loadable_yaml_and_nothing_on_error(tmp_path):
     bad = tmp_path / "bad.csv"
     bad.write_text("time,position\n0,0\n1,1\n")
     out2 = tmp_path / "q.yaml"
-    r = subprocess.run([sys.executable, "-m", "app.cli", "fit", str(bad), "--out", str(out2)], capture_output=True, text=True)
+    r = subprocess.run([sys.executable, "-m", "leuven_friction.app.cli", "fit", str(bad), "--out", str(out2)], capture_output=True, text=True)
     assert r.returncode == 2 and "Traceback" not in r.stderr and not out2.exists()
 
 

@@ -1,5 +1,5 @@
 """Make the sample recordings from the paper's parameter values (Tables I, II; n = 7,
-σ1 = 1500, I = 5 kg·m²) with realistic noise. Run: ``python sample_data/generate.py``.
+σ1 = 1500, I = 5 kg·m²) with realistic noise. Run: ``python synth/samples.py``.
 
 Every function returns a DataFrame, so tests can make fresh noisy copies with other seeds.
 """
@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from model import default_params, simulate_displacement, simulate_force
+from leuven_friction.model import default_params, simulate_displacement, simulate_force
 
-HERE = Path(__file__).parent
+HERE = Path(__file__).resolve().parent.parent / "sample_data"
 SPEEDS = np.array([0.001, 0.002, 0.004, 0.008, 0.015, 0.03, 0.06, 0.12, 0.25, 0.5, 1.0])
 
 
