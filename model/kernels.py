@@ -143,9 +143,9 @@ def transition_curve_inverse(kind, tz, tF, F):
 
 # ---------------------------------------------------------------- hysteresis memory (III-B)
 @helper
-def hysteresis_force(st, kind, tz, tF):
-    """Eq. (4): F_h = F_b + F_d(z)."""
-    return st[S_FB] + transition_curve(kind, tz, tF, st[S_Z])
+def hysteresis_force(st, kind, tz, tF, kap):
+    """Eq. (4): F_h = F_b + F_d(κ·z) (κ: the stiffness scale, 1 for the model as given)."""
+    return st[S_FB] + transition_curve(kind, tz, tF, kap * st[S_Z])
 
 
 @kernel
@@ -167,7 +167,7 @@ def _drop_oldest_internal_pair(st, cap):
 
 
 @kernel
-def velocity_reversal(st, p, kind, tz, tF, side):
+def velocity_reversal(st, p, kind, tz, tF, side, kap=1.0):
     """Mechanism 1: push F_h at the reversal onto m (now ascending) or M (now descending),
     start a new transition curve there (F_b = F_h, z = 0).
 
@@ -179,7 +179,7 @@ def velocity_reversal(st, p, kind, tz, tF, side):
     """
     cap = (st.shape[0] - HEADER) // 2
     d = st[S_DIR]
-    fd = transition_curve(kind, tz, tF, st[S_Z])
+    fd = transition_curve(kind, tz, tF, kap * st[S_Z])
     fh = st[S_FB] + fd
     nmin = int(st[S_NMIN])
     nmax = int(st[S_NMAX])
@@ -188,14 +188,14 @@ def velocity_reversal(st, p, kind, tz, tF, side):
             st[S_NMIN] = nmin - 1
             fb = st[HEADER + cap + nmax - 1]
             st[S_FB] = fb
-            st[S_Z] = transition_curve_inverse(kind, tz, tF, fh - fb)
+            st[S_Z] = transition_curve_inverse(kind, tz, tF, fh - fb) / kap
             st[S_DIR] = side
             return
         if d < 0.0 and nmax >= 2:
             st[S_NMAX] = nmax - 1
             fb = st[HEADER + nmin - 1]
             st[S_FB] = fb
-            st[S_Z] = transition_curve_inverse(kind, tz, tF, fh - fb)
+            st[S_Z] = transition_curve_inverse(kind, tz, tF, fh - fb) / kap
             st[S_DIR] = side
             return
     if side > 0.0:
@@ -220,7 +220,7 @@ def velocity_reversal(st, p, kind, tz, tF, side):
 
 
 @helper
-def close_internal_loops(st, kind, tz, tF, fh):
+def close_internal_loops(st, kind, tz, tF, fh, kap=1.0):
     """Mechanism 2: when F_h reaches the extremum where the current internal loop began,
     remove both extrema of that loop (wiping out) and continue the older curve:
     F_b = S_m(i-1) (ascending) and z = F_d^{-1}(S_M(i) - S_m(i-1)).
@@ -245,12 +245,12 @@ def close_internal_loops(st, kind, tz, tF, fh):
         st[S_NMIN] = nmin - 1
         st[S_NMAX] = nmax - 1
         st[S_FB] = fb
-        st[S_Z] = transition_curve_inverse(kind, tz, tF, fh - fb)
+        st[S_Z] = transition_curve_inverse(kind, tz, tF, fh - fb) / kap
         st[S_CLOSINGS] += 1
 
 
 @kernel
-def reset_to_outer_loop(st, p, kind, tz, tF, side, fh):
+def reset_to_outer_loop(st, p, kind, tz, tF, side, fh, kap=1.0):
     """Mechanism 3: going to sliding wipes the memory: m = [F_s-], M = [F_s+], F_b = F_s-
     (moving +) or F_s+ (moving -), z = F_d^{-1}(F_h - F_b) so F_h and F are unchanged."""
     cap = (st.shape[0] - HEADER) // 2
@@ -262,7 +262,7 @@ def reset_to_outer_loop(st, p, kind, tz, tF, side, fh):
     st[S_NMIN] = 1.0
     st[S_NMAX] = 1.0
     st[S_FB] = fb
-    st[S_Z] = transition_curve_inverse(kind, tz, tF, fh - fb)
+    st[S_Z] = transition_curve_inverse(kind, tz, tF, fh - fb) / kap
     st[S_DIR] = side
     st[S_RESETS] += 1
 
@@ -296,7 +296,7 @@ def _abs_pow(a, p):
 
 
 @helper
-def solve_state_equation(p, kind, tz, tF, z0, dx, D):
+def solve_state_equation(p, kind, tz, tF, z0, dx, D, kap):
     """Backward-Euler step of eq. (5) written per unit displacement,
     z1 = z0 + dx·(1 - sign(r)|r|^n), r = F_d(z1)/D, D = S(v) - F_b.
 
@@ -305,14 +305,14 @@ def solve_state_equation(p, kind, tz, tF, z0, dx, D):
     unique and is bracketed by [z0, z0 + dx] below the steady state and by
     [F_d^{-1}(D), z0] above it; Newton, falling back to bisection inside the bracket.
     """
-    fd0 = transition_curve(kind, tz, tF, z0)
+    fd0 = transition_curve(kind, tz, tF, kap * z0)
     r0 = fd0 / D
     a0 = abs(r0)
     ph0 = _abs_pow(a0, p) * r0
     if ph0 < 1.0:
         lo, hi = z0, z0 + dx
     else:
-        lo, hi = transition_curve_inverse(kind, tz, tF, D), z0
+        lo, hi = transition_curve_inverse(kind, tz, tF, D) / kap, z0
     if lo > hi:
         lo, hi = hi, lo
     z = z0 + dx * (1.0 - ph0)
@@ -323,7 +323,7 @@ def solve_state_equation(p, kind, tz, tF, z0, dx, D):
     tol = 1e-7 * abs(dx) + 1e-300
     n = p[P_N]
     for _ in range(60):
-        fd = transition_curve(kind, tz, tF, z)
+        fd = transition_curve(kind, tz, tF, kap * z)
         r = fd / D
         rn1 = _abs_pow(abs(r), p)
         g = z - z0 - dx * (1.0 - rn1 * r)
@@ -333,7 +333,7 @@ def solve_state_equation(p, kind, tz, tF, z0, dx, D):
             hi = z
         else:
             lo = z
-        dg = 1.0 + dx * n * rn1 * transition_slope(kind, tz, tF, z) / D
+        dg = 1.0 + dx * n * rn1 * kap * transition_slope(kind, tz, tF, kap * z) / D
         zn = z - g / dg
         if abs(zn - z) <= tol:
             z = zn
@@ -346,7 +346,7 @@ def solve_state_equation(p, kind, tz, tF, z0, dx, D):
 
 # ---------------------------------------------------------------- one step of each model
 @helper
-def leuven_advance(st, p, kind, tz, tF, dx, side, s):
+def leuven_advance(st, p, kind, tz, tF, dx, side, s, kap):
     """Advance the Leuven state over displacement ``dx`` moving in direction ``side`` with
     S(v) = ``s``.
 
@@ -354,32 +354,33 @@ def leuven_advance(st, p, kind, tz, tF, dx, side, s):
     loop closing leave F_h unchanged and are not part of dz/dt.
     """
     if side != st[S_DIR]:
-        velocity_reversal(st, p, kind, tz, tF, side)
+        velocity_reversal(st, p, kind, tz, tF, side, kap)
     fb = st[S_FB]
     z = st[S_Z]
     D = s - fb
-    fd = transition_curve(kind, tz, tF, z)
+    fd = transition_curve(kind, tz, tF, kap * z)
     # Reset when F_h has reached S(v) while moving (dz/dt = 0 in eq. (5)). This also covers
     # S(v) - F_b of the wrong sign (a reversal point beyond S(v), e.g. a minimum above F_c+
     # followed by fast motion), where eq. (5) as written would push F_h away from S(v):
     # the system is sliding, so it gets the sliding memory and relaxes onto S(v).
     if side * D <= 0.0 or fd / D >= 1.0 - RESET_TOL:
-        reset_to_outer_loop(st, p, kind, tz, tF, side, fb + fd)
+        reset_to_outer_loop(st, p, kind, tz, tF, side, fb + fd, kap)
         fb = st[S_FB]
         z = st[S_Z]
         D = s - fb
-    z1 = solve_state_equation(p, kind, tz, tF, z, dx, D)
+    z1 = solve_state_equation(p, kind, tz, tF, z, dx, D, kap)
     st[S_Z] = z1
-    close_internal_loops(st, kind, tz, tF, fb + transition_curve(kind, tz, tF, z1))
+    close_internal_loops(st, kind, tz, tF, fb + transition_curve(kind, tz, tF, kap * z1), kap)
     return z1 - z
 
 
 @helper
-def lugre_advance(st, p, dx, side, s):
+def lugre_advance(st, p, dx, side, s, kap):
     """Eq. (1) with g(v) = |S(v)|/σ0 (steady state σ0·z = S(v)), backward Euler in x:
-    z1 = (z0 + dx)/(1 + |dx|·σ0/|S(v)|), linear in z1 so solved exactly."""
+    z1 = (z0 + dx)/(1 + |dx|·σ0/|S(v)|), linear in z1 so solved exactly. The stiffness
+    scale κ multiplies σ0."""
     z0 = st[S_Z]
-    z1 = (z0 + dx) / (1.0 + abs(dx) * p[P_SIGMA0] / abs(s))
+    z1 = (z0 + dx) / (1.0 + abs(dx) * kap * p[P_SIGMA0] / abs(s))
     st[S_Z] = z1
     if side != st[S_DIR]:
         st[S_REVERSALS] += 1
@@ -388,7 +389,7 @@ def lugre_advance(st, p, dx, side, s):
 
 
 @helper
-def advance(model, st, p, kind, tz, tF, dx, v):
+def advance(model, st, p, kind, tz, tF, dx, v, kap):
     """Advance the friction state over one step; returns the continuous change of z.
 
     S(v) is evaluated once here for all three models (it is the costly part of a step: one
@@ -400,47 +401,54 @@ def advance(model, st, p, kind, tz, tF, dx, v):
     s = stribeck(p, v, side)
     st[S_SV] = s
     if model == LEUVEN:
-        return leuven_advance(st, p, kind, tz, tF, dx, side, s)
+        return leuven_advance(st, p, kind, tz, tF, dx, side, s, kap)
     if model == LUGRE:
-        return lugre_advance(st, p, dx, side, s)
+        return lugre_advance(st, p, dx, side, s, kap)
     st[S_FB] = s
     return 0.0
 
 
 @helper
-def friction_output(model, st, p, kind, tz, tF, dz, dt, v):
+def friction_output(model, st, p, kind, tz, tF, dz, dt, v, sc, kap):
     """(F, F_h): eq. (3) for Leuven, eq. (2) for LuGre, S(v) + σ2·v for the static model
-    (which reports its last S, or the stuck force, at v = 0)."""
+    (which reports its last S, or the stuck force, at v = 0); both times the friction scale
+    ``sc`` (1 for the model as given), which multiplies the whole of eq. (3)."""
     if model == LEUVEN:
-        fh = hysteresis_force(st, kind, tz, tF)
+        fh = hysteresis_force(st, kind, tz, tF, kap)
     elif model == LUGRE:
-        fh = p[P_SIGMA0] * st[S_Z]
+        fh = kap * p[P_SIGMA0] * st[S_Z]
     else:
         fh = st[S_FB]
     side = 1.0 if v >= 0.0 else -1.0
-    return fh + p[P_SIGMA1] * dz / dt + viscous_coefficient(p, side) * v, fh
+    return sc * (fh + p[P_SIGMA1] * dz / dt + viscous_coefficient(p, side) * v), sc * fh
 
 
 # ---------------------------------------------------------------- driver 1: prescribed x(t)
 @kernel
-def run_displacement(model, p, kind, tz, tF, st, t, x, F, Fh, Z, V):
-    """Friction along a prescribed displacement; v is the backward difference of x."""
-    F[0], Fh[0] = friction_output(model, st, p, kind, tz, tF, 0.0, 1.0, 0.0)
+def run_displacement(model, p, kind, tz, tF, st, t, x, fsc, ksc, F, Fh, Z, V):
+    """Friction along a prescribed displacement; v is the backward difference of x.
+
+    ``fsc``, ``ksc``: per-sample friction and stiffness scales, or one value for all samples.
+    """
+    fstep = 1 if fsc.shape[0] > 1 else 0
+    kstep = 1 if ksc.shape[0] > 1 else 0
+    F[0], Fh[0] = friction_output(model, st, p, kind, tz, tF, 0.0, 1.0, 0.0, fsc[0], ksc[0])
     Z[0] = st[S_Z]
     V[0] = 0.0
     for k in range(1, t.shape[0]):
         dt = t[k] - t[k - 1]
         dx = x[k] - x[k - 1]
         v = dx / dt
-        dz = advance(model, st, p, kind, tz, tF, dx, v)
-        F[k], Fh[k] = friction_output(model, st, p, kind, tz, tF, dz, dt, v)
+        kap = ksc[k * kstep]
+        dz = advance(model, st, p, kind, tz, tF, dx, v, kap)
+        F[k], Fh[k] = friction_output(model, st, p, kind, tz, tF, dz, dt, v, fsc[k * fstep], kap)
         Z[k] = st[S_Z]
         V[k] = v
 
 
 # ---------------------------------------------------------------- plant, eq. (8)
 @kernel
-def plant_step(model, p, kind, tz, tF, st, x, v, f, dt):
+def plant_step(model, p, kind, tz, tF, st, x, v, f, dt, sc, kap):
     """One step of I·dv/dt = f - F, linearly implicit Euler.
 
     The friction is linearised in the new velocity: F(v1) ≈ F_h + (K·a·dt + σ1·a + σ2)·v1,
@@ -449,32 +457,34 @@ def plant_step(model, p, kind, tz, tF, st, x, v, f, dt):
     A-stable for that spring–damper, which an explicit step at dt = 1e-4 s is not.
     When the step reverses the velocity, the linearisation of the new curve (z = 0, a = 1) is
     used. The nonlinear state is then advanced exactly (``advance``) with dx = v1·dt.
+    The friction scale ``sc`` multiplies the friction the plant feels, the stiffness scale
+    ``kap`` the presliding stiffness (F_d(κ·z), LuGre's κ·σ0).
     Returns (x1, v1, F, F_h, dz).
     """
     inertia = p[P_INERTIA]
     if model == STATIC:
         # Karnopp-style stiction: stuck while |f| stays inside [F_s-, F_s+].
         if v == 0.0:
-            if p[P_SP + 5] <= f <= p[P_SP]:
-                st[S_FB] = f
+            if sc * p[P_SP + 5] <= f <= sc * p[P_SP]:
+                st[S_FB] = f / sc if sc != 0.0 else 0.0
                 return x, 0.0, f, f, 0.0
             side = 1.0 if f > 0.0 else -1.0
-            fr = stribeck(p, 0.0, side)
+            fr = sc * stribeck(p, 0.0, side)
             v1 = dt * (f - fr) / inertia
             return x + v1 * dt, v1, fr, fr, 0.0
         side = 1.0 if v > 0.0 else -1.0
-        fs = stribeck(p, v, side)
-        c = viscous_coefficient(p, side)
+        fs = sc * stribeck(p, v, side)
+        c = sc * viscous_coefficient(p, side)
         v1 = (inertia * v / dt + f - fs) / (inertia / dt + c)
         if v1 * side <= 0.0:
-            st[S_FB] = f
+            st[S_FB] = f / sc if sc != 0.0 else 0.0
             return x, 0.0, fs + c * v, fs, 0.0
         return x + v1 * dt, v1, fs + c * v1, fs, 0.0
 
     if model == LEUVEN:
-        fh = hysteresis_force(st, kind, tz, tF)
+        fh = sc * hysteresis_force(st, kind, tz, tF, kap)
     else:
-        fh = p[P_SIGMA0] * st[S_Z]
+        fh = sc * kap * p[P_SIGMA0] * st[S_Z]
     num = inertia * v / dt + f - fh
     if num == 0.0:
         return x, 0.0, fh, fh, 0.0
@@ -484,33 +494,36 @@ def plant_step(model, p, kind, tz, tF, st, x, v, f, dt):
     s = st[S_SV] if (v * side > 0.0 and side == st[S_DIR]) else p[P_SP] if side > 0.0 else p[P_SP + 5]
     if model == LEUVEN:
         if side == st[S_DIR]:
-            r = transition_curve(kind, tz, tF, st[S_Z]) / (s - st[S_FB])
+            r = transition_curve(kind, tz, tF, kap * st[S_Z]) / (s - st[S_FB])
             a = 1.0 - _abs_pow(abs(r), p) * r
-            K = transition_slope(kind, tz, tF, st[S_Z])
+            K = kap * transition_slope(kind, tz, tF, kap * st[S_Z])
         else:
             a = 1.0
-            K = transition_slope(kind, tz, tF, 0.0)
+            K = kap * transition_slope(kind, tz, tF, 0.0)
     else:
-        K = p[P_SIGMA0]
-        a = 1.0 - side * p[P_SIGMA0] * st[S_Z] / abs(s)
+        K = kap * p[P_SIGMA0]
+        a = 1.0 - side * K * st[S_Z] / abs(s)
     a = min(1.0, max(0.0, a))
-    v1 = num / (inertia / dt + K * a * dt + p[P_SIGMA1] * a + viscous_coefficient(p, side))
+    v1 = num / (inertia / dt + sc * (K * a * dt + p[P_SIGMA1] * a + viscous_coefficient(p, side)))
     dx = v1 * dt
-    dz = advance(model, st, p, kind, tz, tF, dx, v1)
-    Fr, fh1 = friction_output(model, st, p, kind, tz, tF, dz, dt, v1)
+    dz = advance(model, st, p, kind, tz, tF, dx, v1, kap)
+    Fr, fh1 = friction_output(model, st, p, kind, tz, tF, dz, dt, v1, sc, kap)
     return x + dx, v1, Fr, fh1, dz
 
 
 # ---------------------------------------------------------------- driver 2: prescribed f(t)
 @kernel
-def run_force(model, p, kind, tz, tF, st, t, f, X, V, F, Fh, Z):
+def run_force(model, p, kind, tz, tF, st, t, f, fsc, ksc, X, V, F, Fh, Z):
     """Plant driven by a prescribed applied force; X[0], V[0] hold the initial state."""
-    F[0], Fh[0] = friction_output(model, st, p, kind, tz, tF, 0.0, 1.0, V[0])
+    fstep = 1 if fsc.shape[0] > 1 else 0
+    kstep = 1 if ksc.shape[0] > 1 else 0
+    F[0], Fh[0] = friction_output(model, st, p, kind, tz, tF, 0.0, 1.0, V[0], fsc[0], ksc[0])
     Z[0] = st[S_Z]
     x = X[0]
     v = V[0]
     for k in range(1, t.shape[0]):
-        x, v, F[k], Fh[k], _ = plant_step(model, p, kind, tz, tF, st, x, v, f[k], t[k] - t[k - 1])
+        x, v, F[k], Fh[k], _ = plant_step(model, p, kind, tz, tF, st, x, v, f[k], t[k] - t[k - 1],
+                                          fsc[k * fstep], ksc[k * kstep])
         X[k] = x
         V[k] = v
         Z[k] = st[S_Z]
@@ -518,11 +531,13 @@ def run_force(model, p, kind, tz, tF, st, t, f, X, V, F, Fh, Z):
 
 # ---------------------------------------------------------------- driver 3: closed loop
 @kernel
-def run_closed_loop(model, p, kind, tz, tF, st, t, x_ref, ff, kp, ki, q, ctrl_every, X, V, U, F, Fh, Z):
+def run_closed_loop(model, p, kind, tz, tF, st, t, x_ref, ff, kp, ki, q, ctrl_every, fsc, ksc, X, V, U, F, Fh, Z):
     """Position control of the plant: u = Kp·e + Ki·∫e + ff, e = x_ref - Q(x), where Q
     quantises to the encoder step q (q = 0: exact). The controller runs every
     ``ctrl_every`` simulation steps and holds its output in between (zero-order hold)."""
-    F[0], Fh[0] = friction_output(model, st, p, kind, tz, tF, 0.0, 1.0, V[0])
+    fstep = 1 if fsc.shape[0] > 1 else 0
+    kstep = 1 if ksc.shape[0] > 1 else 0
+    F[0], Fh[0] = friction_output(model, st, p, kind, tz, tF, 0.0, 1.0, V[0], fsc[0], ksc[0])
     Z[0] = st[S_Z]
     x = X[0]
     v = V[0]
@@ -535,7 +550,7 @@ def run_closed_loop(model, p, kind, tz, tF, st, t, x_ref, ff, kp, ki, q, ctrl_ev
             e = x_ref[k - 1] - xm
             integral += e * dt * ctrl_every
             u = kp * e + ki * integral + ff[k - 1]
-        x, v, F[k], Fh[k], _ = plant_step(model, p, kind, tz, tF, st, x, v, u, dt)
+        x, v, F[k], Fh[k], _ = plant_step(model, p, kind, tz, tF, st, x, v, u, dt, fsc[k * fstep], ksc[k * kstep])
         X[k] = x
         V[k] = v
         U[k] = u

@@ -100,55 +100,96 @@ def _series(name: str, a, n: int) -> np.ndarray:
     return a
 
 
-def simulate_displacement(params: FrictionParams, t, x, *, state: np.ndarray | None = None) -> SimResult:
+_ONE = np.ones(1)
+
+
+def _scale(name: str, a, n: int) -> np.ndarray:
+    """A per-sample scale factor (or one number for all samples); absent means 1."""
+    if a is None:
+        return _ONE
+    a = np.ascontiguousarray(np.atleast_1d(a), dtype=np.float64)
+    if a.shape == (1,):
+        a = np.full(n, a[0])
+    if a.shape != (n,):
+        raise SignalError(f"{name}: expected {n} samples like time (or one number), got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise SignalError(f"{name}: non-finite value at sample {int(np.argmin(np.isfinite(a)))}")
+    if name == "stiffness_scale" and np.any(a <= 0):
+        raise SignalError(f"{name}: must be > 0, but sample {int(np.argmax(a <= 0))} is {a[a <= 0][0]}")
+    if name == "friction_scale" and np.any(a < 0):
+        raise SignalError(f"{name}: must be >= 0, but sample {int(np.argmax(a < 0))} is {a[a < 0][0]}")
+    return a
+
+
+def simulate_displacement(params: FrictionParams, t, x, *, state: np.ndarray | None = None,
+                          friction_scale=None, stiffness_scale=None) -> SimResult:
     """Friction predicted along a prescribed displacement x(t).
 
     The applied force reported is the one that would produce this motion, I·ẍ + F.
     ``state`` (from ``initial_state``) lets a caller start from a chosen memory and read it
     back afterwards; it is updated in place.
+
+    ``friction_scale`` (per sample, default 1) multiplies the friction force of eq. (3) (and
+    the reported F_h); ``stiffness_scale`` κ (per sample, default 1) multiplies the presliding
+    stiffness: F_d is evaluated at κ·z (same maximum force, abscissas divided by κ), LuGre's
+    σ0 becomes κ·σ0. Both act inside the time loop, so a plant driven by force feels them.
     """
     t = _time(t)
     x = _series("position", x, len(t))
+    n = len(t)
+    fsc = _scale("friction_scale", friction_scale, n)
+    ksc = _scale("stiffness_scale", stiffness_scale, n)
     code, p, kind, tz, tF = pack(params)
     st = initial_state(params) if state is None else state
-    n = len(t)
     F, Fh, Z, V = (np.empty(n) for _ in range(4))
-    K.run_displacement(code, p, kind, tz, tF, st, t, x, F, Fh, Z, V)
+    K.run_displacement(code, p, kind, tz, tF, st, t, x, fsc, ksc, F, Fh, Z, V)
     acc = np.zeros(n)
     acc[1:] = np.diff(V) / np.diff(t)
     return SimResult(t, x, V, params.inertia * acc + F, F, Fh, Z, params.model, memory_summary(st))
 
 
 def simulate_force(params: FrictionParams, t, f, *, x0: float = 0.0, v0: float = 0.0,
-                   state: np.ndarray | None = None) -> SimResult:
-    """The plant I·ẍ = f - F (eq. (8)) under a prescribed applied force f(t)."""
+                   state: np.ndarray | None = None, friction_scale=None, stiffness_scale=None) -> SimResult:
+    """The plant I·ẍ = f - F (eq. (8)) under a prescribed applied force f(t).
+
+    ``friction_scale`` and ``stiffness_scale``: as in ``simulate_displacement``; the plant
+    feels the scaled friction.
+    """
     t = _time(t)
     f = _series("applied_force", f, len(t))
+    n = len(t)
+    fsc = _scale("friction_scale", friction_scale, n)
+    ksc = _scale("stiffness_scale", stiffness_scale, n)
     code, p, kind, tz, tF = pack(params)
     st = initial_state(params) if state is None else state
-    n = len(t)
     X, V, F, Fh, Z = (np.zeros(n) for _ in range(5))
     X[0], V[0] = x0, v0
-    K.run_force(code, p, kind, tz, tF, st, t, f, X, V, F, Fh, Z)
+    K.run_force(code, p, kind, tz, tF, st, t, f, fsc, ksc, X, V, F, Fh, Z)
     return SimResult(t, X, V, f.copy(), F, Fh, Z, params.model, memory_summary(st))
 
 
 def simulate_closed_loop(params: FrictionParams, t, x_ref, *, kp: float, ki: float = 0.0, feedforward=None,
                          encoder_step: float = 0.0, ctrl_every: int = 1, x0: float = 0.0,
-                         state: np.ndarray | None = None) -> SimResult:
-    """Position control: u = Kp·e + Ki·∫e + feedforward, e = x_ref - quantised x."""
+                         state: np.ndarray | None = None, friction_scale=None,
+                         stiffness_scale=None) -> SimResult:
+    """Position control: u = Kp·e + Ki·∫e + feedforward, e = x_ref - quantised x.
+
+    ``friction_scale`` and ``stiffness_scale``: as in ``simulate_displacement``.
+    """
     t = _time(t)
     x_ref = _series("x_ref", x_ref, len(t))
     ff = np.zeros(len(t)) if feedforward is None else _series("feedforward", feedforward, len(t))
     if ctrl_every < 1:
         raise SignalError(f"ctrl_every: must be >= 1, got {ctrl_every}")
+    n = len(t)
+    fsc = _scale("friction_scale", friction_scale, n)
+    ksc = _scale("stiffness_scale", stiffness_scale, n)
     code, p, kind, tz, tF = pack(params)
     st = initial_state(params) if state is None else state
-    n = len(t)
     X, V, U, F, Fh, Z = (np.zeros(n) for _ in range(6))
     X[0] = x0
     K.run_closed_loop(code, p, kind, tz, tF, st, t, x_ref, ff, float(kp), float(ki), float(encoder_step),
-                      int(ctrl_every), X, V, U, F, Fh, Z)
+                      int(ctrl_every), fsc, ksc, X, V, U, F, Fh, Z)
     return SimResult(t, X, V, U, F, Fh, Z, params.model, memory_summary(st))
 
 
