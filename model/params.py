@@ -1,15 +1,22 @@
-"""Parameter records of the friction models, with validation that names the offending field.
+"""Parameter records of the friction models and their schema.
 
-Everything here is pure data: conversion to and from plain dicts (the YAML shape of
-DESIGN.md), validation, and packing into the flat arrays the compiled kernels take.
-Reading and writing files lives in ``identify.paramfile``; ``model`` does no I/O.
+Every scalar parameter is a dataclass field whose metadata (``_param``) says what it is: the
+kind of unit, the bounds, the sign rule, a one-line description in the paper's words and the
+slider scale. That metadata is the single source for validation, for the YAML shape
+(``to_dict``/``from_dict``), for the explorer's controls and hints and for parameter tables
+(``schema``, ``parameter_rows``). Adding a parameter is one edit: a field with its metadata.
+
+The records are immutable: frozen dataclasses, tuples instead of lists, and read-only
+mappings (``FrozenDict``) for the free-form parts (uncertainty, provenance, effects).
+
+Pure data: reading and writing files lives in ``identify.paramfile``; ``model`` does no I/O.
 """
 
 from __future__ import annotations
 
-import copy
 import math
-from dataclasses import dataclass, field, replace
+from collections.abc import Mapping
+from dataclasses import MISSING, dataclass, field, fields, replace
 
 import numpy as np
 
@@ -18,17 +25,250 @@ from .errors import ParameterError
 MODEL_KINDS = ("leuven", "lugre", "static")
 TRANSITION_KINDS = ("piecewise_linear", "tanh_linear")
 
+# A transition curve is a handful of turning points (Table II has five, the fit uses five);
+# more than this is a mistake, and refusing it keeps a file from stalling a simulation or the
+# explorer (which draws one control per knot).
+MAX_KNOTS = 64
 
-def _finite(path: str, value) -> float:
+
+# -- read-only records --------------------------------------------------------------------------
+class FrozenDict(dict):
+    """A dict that cannot change after construction (hashable when its values are)."""
+
+    def _immutable(self, *_, **__):
+        raise TypeError("parameter records are immutable; use FrictionParams.replace(...)")
+
+    __setitem__ = __delitem__ = clear = pop = popitem = setdefault = update = __ior__ = _immutable  # type: ignore[assignment]
+
+    def __hash__(self):  # type: ignore[override]
+        return hash(tuple(sorted((str(k), v) for k, v in self.items())))
+
+    def __reduce__(self):
+        return (FrozenDict, (dict(self),))
+
+    def __copy__(self):
+        return self
+
+    def __deepcopy__(self, memo):
+        return self
+
+    def __repr__(self) -> str:
+        return f"FrozenDict({dict.__repr__(self)})"
+
+
+def freeze(obj):
+    """Deep read-only copy: mappings -> FrozenDict, lists -> tuples."""
+    if isinstance(obj, FrozenDict):
+        return obj
+    if isinstance(obj, Mapping):
+        return FrozenDict({k: freeze(v) for k, v in obj.items()})
+    if isinstance(obj, (list, tuple)):
+        return tuple(freeze(v) for v in obj)
+    return obj
+
+
+def thaw(obj):
+    """Plain dicts and lists again (for YAML and JSON)."""
+    if isinstance(obj, Mapping):
+        return {k: thaw(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [thaw(v) for v in obj]
+    if isinstance(obj, np.generic):
+        return obj.item()
+    return obj
+
+
+class _RecordMapping(Mapping):
+    """Read access by name (``rec["z0"]``, ``dict(rec)``) for small frozen records."""
+
+    def __getitem__(self, key):
+        if key not in self._names():
+            raise KeyError(key)
+        return getattr(self, key)
+
+    def __iter__(self):
+        return iter(self._names())
+
+    def __len__(self) -> int:
+        return len(self._names())
+
+    @classmethod
+    def _names(cls) -> tuple:
+        return tuple(f.name for f in fields(cls))
+
+
+# -- units ----------------------------------------------------------------------------------------
+# How each unit kind is written from the units of a parameter set (position, force, time).
+UNIT_KINDS = {
+    "force": "{force}",
+    "position": "{position}",
+    "velocity": "{position}/{time}",
+    "stiffness": "{force}/{position}",
+    "damping": "{force}·{time}/{position}",  # force per velocity
+    "inertia": "{force}·{time}²/{position}",  # force per acceleration: kg·m² for rad/N·m, kg for m/N
+    "dimensionless": "",
+}
+
+
+@dataclass(frozen=True)
+class Units(_RecordMapping):
+    """The units every number of a parameter set is in: those of the data it came from
+    (the loader converts recordings to SI, so rotary data give rad/N·m, linear data m/N)."""
+
+    position: str = "rad"
+    force: str = "N*m"
+    time: str = "s"
+
+    def __post_init__(self):
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if not isinstance(v, str) or not v.strip() or "\n" in v:
+                raise ParameterError(f"units.{f.name}: expected a unit name such as "
+                                     f"{f.default!r}, got {v!r}")
+
+    @classmethod
+    def coerce(cls, value) -> "Units":
+        if isinstance(value, Units):
+            return value
+        if value is None:
+            return cls()
+        if not isinstance(value, Mapping):
+            raise ParameterError("units: expected a mapping like {position: rad, force: N*m, time: s}")
+        unknown = sorted(str(k) for k in value if k not in cls._names())
+        if unknown:
+            raise ParameterError(f"units.{unknown[0]}: unknown (known: {', '.join(cls._names())})")
+        return cls(**{str(k): v for k, v in value.items()})
+
+    @classmethod
+    def of_signals(cls, signal_units: Mapping) -> "Units":
+        """From a recording's signal -> unit record (``identify.data.Recording.units``)."""
+        u = signal_units or {}
+        pos = u.get("position") or str(u.get("velocity", "")).split("/")[0] or cls.position
+        force = u.get("force") or u.get("friction") or cls.force
+        return cls(position=pos, force=force, time=u.get("time") or cls.time)
+
+    def render(self, kind: str) -> str:
+        """The unit of a parameter of this kind, e.g. ``render('damping')`` -> 'N·m·s/rad'."""
+        return UNIT_KINDS[kind].format(position=self.position, force=self.force, time=self.time).replace("*", "·")
+
+
+PAPER_UNITS = Units()
+
+
+# -- field metadata -------------------------------------------------------------------------------
+def _param(default=MISSING, *, kind: str, description: str, symbol: str, lower: float = -math.inf,
+           upper: float = math.inf, lower_open: bool = False, signed: bool = False, scale: str = "lin",
+           typical: tuple | None = None, models: tuple = MODEL_KINDS, control: bool = True, group: str = ""):
+    """A scalar parameter: ``kind`` of unit (UNIT_KINDS), bounds on the value (on its magnitude
+    when ``signed``: the value then carries the sign of its velocity side, Table I convention),
+    a one-line ``description``, the slider ``scale`` (lin/log), a ``typical`` range for
+    dimensionless parameters, the model kinds that use it, and whether the explorer shows it."""
+    assert kind in UNIT_KINDS and scale in ("lin", "log")
+    meta = dict(kind=kind, description=description, symbol=symbol, lower=lower, upper=upper,
+                lower_open=lower_open, signed=signed, scale=scale, typical=typical, models=models,
+                control=control, group=group)
+    return field(default=default, metadata=meta)
+
+
+def _number(path: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating, str)):
+        raise ParameterError(f"{path}: expected a number, got {value!r}"[:200])
     try:
         x = float(value)
     except (TypeError, ValueError):
-        raise ParameterError(f"{path}: expected a number, got {value!r}") from None
+        raise ParameterError(f"{path}: expected a number, got {value!r}"[:200]) from None
+    except OverflowError:  # an integer beyond the float range (YAML reads `n: 1000…0` as int)
+        digits = int(abs(int(value)).bit_length() * math.log10(2)) + 1 if isinstance(value, int) else None
+        raise ParameterError(f"{path}: number too large" + (f" ({digits} digits)" if digits else "")) from None
     if not math.isfinite(x):
         raise ParameterError(f"{path}: must be finite, got {value!r}")
     return x
 
 
+_finite = _number  # older name, kept for callers
+
+
+@dataclass(frozen=True)
+class ParamSpec:
+    """One scalar parameter of a parameter set, as the schema describes it."""
+
+    path: str  # dotted path, e.g. 'stribeck.positive.Fs', 'transition_curve.F.3'
+    name: str  # field name, e.g. 'Fs'
+    label: str  # short symbol for a control or a table, e.g. 'Fs⁺'
+    kind: str  # unit kind (UNIT_KINDS)
+    unit: str  # rendered for the units of the parameter set, e.g. 'N·m·s/rad'
+    description: str
+    lower: float  # bounds of the value itself (for a negative-side parameter: -inf .. 0)
+    upper: float
+    lower_open: bool
+    upper_open: bool
+    sign: int  # +1/-1: the value carries this sign (Table I); 0: no sign rule
+    scale: str  # 'lin' or 'log' (for sliders)
+    typical: tuple | None
+    group: str  # 'stribeck', 'transition_curve' or 'model'
+    control: bool  # shown as a control in the explorer
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        return (self.lower, self.upper)
+
+    @property
+    def hint(self) -> str:
+        unit = f" [{self.unit}]" if self.unit else ""
+        return f"{self.label}{unit}: {self.description}"
+
+    def check(self, value) -> float:
+        """The value as a float, or a ParameterError naming the path and the rule."""
+        x = _number(self.path, value)
+        if self.sign:
+            word = "positive" if self.sign > 0 else "negative"
+            if x * self.sign <= 0:
+                raise ParameterError(f"{self.path}: must be {word} on the {word}-velocity side "
+                                     f"(Table I convention), got {x:g}")
+            return x
+        if self.lower_open and not x > self.lower:
+            raise ParameterError(f"{self.path}: must be > {self.lower:g}, got {x:g}")
+        if x < self.lower:
+            raise ParameterError(f"{self.path}: must be >= {self.lower:g}, got {x:g}")
+        if self.upper_open and not x < self.upper:
+            raise ParameterError(f"{self.path}: must be < {self.upper:g}, got {x:g}")
+        if x > self.upper:
+            raise ParameterError(f"{self.path}: must be <= {self.upper:g}, got {x:g}")
+        return x
+
+    def slider_range(self, value: float) -> tuple[float, float]:
+        """A control's range around the current value: the typical range for dimensionless
+        parameters, else a factor 100 either way (log) or 0 .. 3× the value (lin). Dimensioned
+        ranges scale with the value, so the same rule serves rad/N·m and m/N sets alike."""
+        if self.typical is not None:
+            lo, hi = self.typical
+            return (min(lo, value), max(hi, value))
+        mag = abs(value) or 1.0
+        if self.scale == "log":
+            lo, hi = mag / 100.0, mag * 100.0
+        else:
+            lo, hi = (max(self.lower, 0.0) if self.sign == 0 else 0.0), 3.0 * mag
+        return (-hi, -lo) if self.sign < 0 else (lo, hi)
+
+
+def _spec(f, path: str, units: Units, sign: int = 0, suffix: str = "", index: int | None = None) -> ParamSpec:
+    m = f.metadata
+    sym = m["symbol"] if index is None else m["symbol"].format(i=index)
+    sign = sign if m["signed"] else 0
+    lower, upper, lower_open, upper_open = m["lower"], m["upper"], m["lower_open"], False
+    if sign < 0:  # the metadata bounds the magnitude; the negative side mirrors them
+        lower, upper, lower_open, upper_open = -upper, -lower, False, lower_open
+    return ParamSpec(path=path, name=f.name, label=sym + suffix, kind=m["kind"], unit=units.render(m["kind"]),
+                     description=m["description"], lower=lower, upper=upper, lower_open=lower_open,
+                     upper_open=upper_open, sign=sign, scale=m["scale"], typical=m["typical"], group=m["group"],
+                     control=m["control"])
+
+
+def _scalar_fields(cls):
+    return [f for f in fields(cls) if "kind" in f.metadata]
+
+
+# -- records --------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class StribeckSide:
     """Eq. (7) for one velocity sign: S(v) = Fc + (Fs - Fc)·exp(-|v/vs|^delta), plus sigma2·v.
@@ -36,29 +276,27 @@ class StribeckSide:
     On the negative side Fs, Fc and vs are negative numbers (Table I convention).
     """
 
-    Fs: float
-    Fc: float
-    vs: float
-    delta: float
-    sigma2: float
+    Fs: float = _param(kind="force", symbol="Fs", signed=True, lower=0.0, lower_open=True, scale="log",
+                       group="stribeck", description="static friction: S(v) at zero velocity, eq. (7)")
+    Fc: float = _param(kind="force", symbol="Fc", signed=True, lower=0.0, lower_open=True, scale="log",
+                       group="stribeck", description="Coulomb friction: the level S(v) settles to past the "
+                                                     "Stribeck velocity, eq. (7)")
+    vs: float = _param(kind="velocity", symbol="vs", signed=True, lower=0.0, lower_open=True, scale="log",
+                       group="stribeck", description="Stribeck velocity: how fast S(v) falls from Fs to Fc, eq. (7)")
+    delta: float = _param(kind="dimensionless", symbol="δ", lower=0.0, lower_open=True, typical=(0.1, 3.0),
+                          group="stribeck", description="an arbitrary exponent shaping the Stribeck effect, eq. (7)")
+    sigma2: float = _param(kind="damping", symbol="σ2", lower=0.0, scale="lin", group="stribeck",
+                           description="viscous damping coefficient: the σ2·v term of eqs. (3) and (6)")
 
     def validate(self, path: str, sign: int) -> None:
-        for name in ("Fs", "Fc", "vs", "delta", "sigma2"):
-            _finite(f"{path}.{name}", getattr(self, name))
-        word = "positive" if sign > 0 else "negative"
-        for name in ("Fs", "Fc", "vs"):
-            if getattr(self, name) * sign <= 0:
-                raise ParameterError(
-                    f"{path}.{name}: must be {word} on the {word}-velocity side "
-                    f"(Table I convention), got {getattr(self, name)}"
-                )
-        if self.delta <= 0:
-            raise ParameterError(f"{path}.delta: must be > 0, got {self.delta}")
-        if self.sigma2 < 0:
-            raise ParameterError(f"{path}.sigma2: must be >= 0, got {self.sigma2}")
+        for f in _scalar_fields(StribeckSide):
+            _spec(f, f"{path}.{f.name}", PAPER_UNITS, sign).check(getattr(self, f.name))
 
     def as_array(self) -> np.ndarray:
-        return np.array([self.Fs, self.Fc, self.vs, self.delta, self.sigma2], dtype=np.float64)
+        return np.array([getattr(self, f.name) for f in _scalar_fields(StribeckSide)], dtype=np.float64)
+
+
+STRIBECK_SIDES = (("positive", +1, "⁺"), ("negative", -1, "⁻"))
 
 
 @dataclass(frozen=True)
@@ -67,12 +305,29 @@ class Stribeck:
     negative: StribeckSide
 
     def validate(self, path: str = "stribeck") -> None:
-        self.positive.validate(f"{path}.positive", +1)
-        self.negative.validate(f"{path}.negative", -1)
+        for side, sign, _ in STRIBECK_SIDES:
+            getattr(self, side).validate(f"{path}.{side}", sign)
 
     def as_array(self) -> np.ndarray:
         """[Fs+, Fc+, vs+, delta+, sigma2+, Fs-, Fc-, vs-, delta-, sigma2-] for the kernels."""
         return np.concatenate([self.positive.as_array(), self.negative.as_array()])
+
+
+@dataclass(frozen=True)
+class TanhShape(_RecordMapping):
+    """F_d(z) = A·tanh(z/z0) + k·z: a smooth three-parameter transition curve (the paper's
+    remark 2 cites such single continuous functions); initial stiffness A/z0 + k."""
+
+    A: float = _param(kind="force", symbol="A", lower=0.0, lower_open=True, scale="log", group="transition_curve",
+                      description="saturating part of the transition curve F_d")
+    z0: float = _param(kind="position", symbol="z0", lower=0.0, lower_open=True, scale="log",
+                       group="transition_curve", description="displacement over which the saturating part builds up")
+    k: float = _param(kind="stiffness", symbol="k", lower=0.0, lower_open=True, scale="log",
+                      group="transition_curve", description="far-field stiffness of the transition curve F_d")
+
+    def validate(self, path: str) -> None:
+        for f in _scalar_fields(TanhShape):
+            _spec(f, f"{path}.{f.name}", PAPER_UNITS).check(getattr(self, f.name))
 
 
 @dataclass(frozen=True)
@@ -81,15 +336,36 @@ class TransitionCurve:
 
     ``piecewise_linear``: knots ``z`` (rad or m) and ``F`` (N·m or N) starting at (0, 0), as
     Table II; beyond the last knot the last segment is extended (F_d must be invertible over
-    every force difference the hysteresis memory can ask for).
-    ``tanh_linear``: F_d(z) = A·tanh(z/z0) + k·z, a smooth three-parameter family
-    (``shape = {A, z0, k}``): initial stiffness A/z0 + k, far-field stiffness k.
+    every force difference the hysteresis memory can ask for). At most ``MAX_KNOTS`` knots.
+    ``tanh_linear``: ``shape`` (``TanhShape``: A, z0, k).
     """
 
     kind: str = "piecewise_linear"
-    z: tuple[float, ...] = ()
-    F: tuple[float, ...] = ()
-    shape: dict = field(default_factory=dict)
+    z: tuple[float, ...] = _param((), kind="position", symbol="z{i}", lower=0.0, lower_open=True, scale="log",
+                                  group="transition_curve", description="abscissa of a turning point of the "
+                                                                        "piecewise linear transition curve F_d (Table II)")
+    F: tuple[float, ...] = _param((), kind="force", symbol="F_d(z{i})", lower=0.0, lower_open=True, scale="lin",
+                                  group="transition_curve", description="ordinate of a turning point of the "
+                                                                        "transition curve F_d, estimated by maximum likelihood")
+    shape: TanhShape | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "z", tuple(self.z))
+        object.__setattr__(self, "F", tuple(self.F))
+        if self.shape is not None and not isinstance(self.shape, TanhShape):
+            if not isinstance(self.shape, Mapping):
+                raise ParameterError("transition_curve.shape: expected a mapping of A, z0, k")
+            if not self.shape and self.kind != "tanh_linear":
+                object.__setattr__(self, "shape", None)
+                return
+            missing = [n for n in TanhShape._names() if n not in self.shape]
+            if missing:
+                raise ParameterError(f"transition_curve.shape.{missing[0]}: missing (tanh_linear needs A, z0, k)")
+            extra = sorted(str(k) for k in self.shape if k not in TanhShape._names())
+            if extra:
+                raise ParameterError(f"transition_curve.shape.{extra[0]}: unknown field (known: A, z0, k)")
+            object.__setattr__(self, "shape", TanhShape(**{n: _number(f"transition_curve.shape.{n}", self.shape[n])
+                                                           for n in TanhShape._names()}))
 
     def validate(self, path: str = "transition_curve") -> None:
         if self.kind not in TRANSITION_KINDS:
@@ -99,8 +375,10 @@ class TransitionCurve:
                 raise ParameterError(f"{path}: z has {len(self.z)} knots but F has {len(self.F)}")
             if len(self.z) < 2:
                 raise ParameterError(f"{path}: needs at least 2 knots (0,0) and one more, got {len(self.z)}")
-            z = [_finite(f"{path}.z.{i}", v) for i, v in enumerate(self.z)]
-            F = [_finite(f"{path}.F.{i}", v) for i, v in enumerate(self.F)]
+            if len(self.z) > MAX_KNOTS:
+                raise ParameterError(f"{path}: {len(self.z)} knots, at most {MAX_KNOTS} are accepted")
+            z = [_number(f"{path}.z.{i}", v) for i, v in enumerate(self.z)]
+            F = [_number(f"{path}.F.{i}", v) for i, v in enumerate(self.F)]
             if z[0] != 0.0 or F[0] != 0.0:
                 raise ParameterError(f"{path}: the first knot must be (0, 0) (point symmetry), got ({z[0]}, {F[0]})")
             for i in range(1, len(z)):
@@ -111,18 +389,21 @@ class TransitionCurve:
                         f"{path}.F.{i}: F_d must be strictly increasing, got {F[i - 1]} then {F[i]}"
                     )
         else:
-            for name in ("A", "z0", "k"):
-                if name not in self.shape:
-                    raise ParameterError(f"{path}.shape.{name}: missing (tanh_linear needs A, z0, k)")
-                if _finite(f"{path}.shape.{name}", self.shape[name]) <= 0:
-                    raise ParameterError(f"{path}.shape.{name}: must be > 0, got {self.shape[name]}")
+            if self.shape is None:
+                raise ParameterError(f"{path}.shape: missing (tanh_linear needs A, z0, k)")
+            self.shape.validate(f"{path}.shape")
 
     def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray]:
         """(kind code, abscissas, ordinates-or-shape) for ``model.kernels``."""
         if self.kind == "piecewise_linear":
             return 0, np.asarray(self.z, dtype=np.float64), np.asarray(self.F, dtype=np.float64)
         s = self.shape
-        return 1, np.zeros(1), np.array([s["A"], s["z0"], s["k"]], dtype=np.float64)
+        return 1, np.zeros(1), np.array([s.A, s.z0, s.k], dtype=np.float64)
+
+    def to_dict(self) -> dict:
+        if self.kind == "piecewise_linear":
+            return {"kind": self.kind, "z": [float(v) for v in self.z], "F": [float(v) for v in self.F]}
+        return {"kind": self.kind, "shape": {k: float(v) for k, v in self.shape.items()}}
 
 
 @dataclass(frozen=True)
@@ -134,20 +415,38 @@ class FrictionParams:
     none, so the default (5 kg·m²) is our choice. ``reversal_tol`` is the smallest hysteresis
     force excursion (force units) that counts as a velocity reversal; a sign change of v within
     it wipes the previous reversal out again (see ``model.kernels.velocity_reversal``).
+    ``units`` are those of the data the numbers came from (the YAML writes them).
     """
 
     model: str = "leuven"
     stribeck: Stribeck = None  # type: ignore[assignment]
     transition_curve: TransitionCurve = None  # type: ignore[assignment]
-    n: float = 7.0
-    sigma1: float = 1500.0
-    sigma0: float | None = None
-    inertia: float = 5.0
-    reversal_tol: float = 1e-7
-    units: dict = field(default_factory=lambda: {"position": "rad", "force": "N*m", "time": "s"})
+    n: float = _param(7.0, kind="dimensionless", symbol="n", lower=0.0, lower_open=True, typical=(1.0, 20.0),
+                      models=("leuven",), group="model",
+                      description="exponent of the state equation (5), similar to the exponent of the general "
+                                  "Dahl model; the paper chose 7")
+    sigma1: float = _param(1500.0, kind="damping", symbol="σ1", lower=0.0, scale="lin", models=("leuven", "lugre"),
+                           group="model", description="micro-viscous damping coefficient: the σ1·dz/dt term of eq. (3)")
+    sigma0: float | None = _param(None, kind="stiffness", symbol="σ0", lower=0.0, lower_open=True, scale="log",
+                                  models=("lugre",), group="model",
+                                  description="LuGre: equivalent stiffness for the position-force relationship at "
+                                              "velocity reversal, eq. (2)")
+    inertia: float = _param(5.0, kind="inertia", symbol="I", lower=0.0, lower_open=True, scale="log", group="model",
+                            description="mass or mass moment of inertia of the moving part, eq. (8); the paper gives none")
+    reversal_tol: float = _param(1e-7, kind="force", symbol="reversal tol.", lower=0.0, scale="log", group="model",
+                                 control=False, description="smallest hysteresis force excursion that counts as a "
+                                                            "velocity reversal (our choice; the paper has none)")
+    units: Units = field(default_factory=Units)
     effects: tuple = ()
-    uncertainty: dict = field(default_factory=dict)
-    provenance: dict = field(default_factory=dict)
+    uncertainty: FrozenDict = field(default_factory=FrozenDict)
+    provenance: FrozenDict = field(default_factory=FrozenDict)
+
+    def __post_init__(self):
+        # immutable all the way down: callers may hand in dicts and lists
+        object.__setattr__(self, "units", Units.coerce(self.units))
+        object.__setattr__(self, "effects", freeze(tuple(self.effects or ())))
+        object.__setattr__(self, "uncertainty", freeze(self.uncertainty or {}))
+        object.__setattr__(self, "provenance", freeze(self.provenance or {}))
 
     def validate(self) -> "FrictionParams":
         if self.model not in MODEL_KINDS:
@@ -158,19 +457,14 @@ class FrictionParams:
         if self.transition_curve is None:
             raise ParameterError("transition_curve: missing")
         self.transition_curve.validate()
-        if _finite("n", self.n) <= 0:
-            raise ParameterError(f"n: must be > 0, got {self.n}")
-        if _finite("sigma1", self.sigma1) < 0:
-            raise ParameterError(f"sigma1: must be >= 0, got {self.sigma1}")
-        if _finite("inertia", self.inertia) <= 0:
-            raise ParameterError(f"inertia: must be > 0, got {self.inertia}")
-        if _finite("reversal_tol", self.reversal_tol) < 0:
-            raise ParameterError(f"reversal_tol: must be >= 0, got {self.reversal_tol}")
-        if self.model == "lugre":
-            if self.sigma0 is None:
-                raise ParameterError("sigma0: LuGre needs the bristle stiffness sigma0")
-            if _finite("sigma0", self.sigma0) <= 0:
-                raise ParameterError(f"sigma0: must be > 0, got {self.sigma0}")
+        for f in _scalar_fields(FrictionParams):
+            value = getattr(self, f.name)
+            if value is None and f.name == "sigma0":
+                if self.model == "lugre":
+                    raise ParameterError("sigma0: LuGre needs the bristle stiffness sigma0")
+                continue
+            _spec(f, f.name, self.units).check(value)
+        _validate_effects(self.effects)
         return self
 
     def replace(self, **changes) -> "FrictionParams":
@@ -178,133 +472,243 @@ class FrictionParams:
 
     # -- plain dicts (the YAML shape) -------------------------------------------------------
     def to_dict(self) -> dict:
-        tc = self.transition_curve
-        tc_d: dict = {"kind": tc.kind}
-        if tc.kind == "piecewise_linear":
-            tc_d["z"] = [float(v) for v in tc.z]
-            tc_d["F"] = [float(v) for v in tc.F]
-        else:
-            tc_d["shape"] = {k: float(v) for k, v in tc.shape.items()}
-        side = lambda s: {k: float(getattr(s, k)) for k in ("Fs", "Fc", "vs", "delta", "sigma2")}  # noqa: E731
+        side = lambda s: {f.name: float(getattr(s, f.name)) for f in _scalar_fields(StribeckSide)}  # noqa: E731
         out = {
             "model": self.model,
             "units": dict(self.units),
-            "stribeck": {"positive": side(self.stribeck.positive), "negative": side(self.stribeck.negative)},
-            "transition_curve": tc_d,
-            "n": float(self.n),
-            "sigma1": float(self.sigma1),
+            "stribeck": {name: side(getattr(self.stribeck, name)) for name, _, _ in STRIBECK_SIDES},
+            "transition_curve": self.transition_curve.to_dict(),
         }
-        if self.sigma0 is not None:
-            out["sigma0"] = float(self.sigma0)
-        out["inertia"] = float(self.inertia)
-        out["reversal_tol"] = float(self.reversal_tol)
-        out["effects"] = copy.deepcopy(list(self.effects))
+        for f in _scalar_fields(FrictionParams):
+            value = getattr(self, f.name)
+            if value is not None:
+                out[f.name] = float(value)
+        out["effects"] = thaw(self.effects)
         if self.uncertainty:
             out["uncertainty"] = {k: float(v) for k, v in self.uncertainty.items()}
         if self.provenance:
-            out["provenance"] = copy.deepcopy(self.provenance)
+            out["provenance"] = thaw(self.provenance)
         return out
 
     @classmethod
     def from_dict(cls, d) -> "FrictionParams":
-        """Build and validate; every problem is a ParameterError naming the dotted field."""
-        if not isinstance(d, dict):
-            raise ParameterError(f"parameter file: expected a mapping at the top level, got {type(d).__name__}")
-        known = {
-            "model", "units", "stribeck", "transition_curve", "n", "sigma1", "sigma0", "inertia",
-            "reversal_tol", "effects", "uncertainty", "provenance",
-        }
-        unknown = sorted(set(d) - known)
-        if unknown:
-            raise ParameterError(f"{unknown[0]}: unknown field (known: {', '.join(sorted(known))})")
-        base = default_params()
-        st = d.get("stribeck")
-        if st is None:
-            stribeck = base.stribeck
-        else:
-            if not isinstance(st, dict):
-                raise ParameterError("stribeck: expected a mapping with 'positive' and 'negative'")
-            sides = {}
-            for sname in ("positive", "negative"):
-                sd = st.get(sname)
-                if not isinstance(sd, dict):
-                    raise ParameterError(f"stribeck.{sname}: missing or not a mapping of Fs, Fc, vs, delta, sigma2")
-                vals = {}
-                for k in ("Fs", "Fc", "vs", "delta", "sigma2"):
-                    if k not in sd:
-                        raise ParameterError(f"stribeck.{sname}.{k}: missing")
-                    vals[k] = _finite(f"stribeck.{sname}.{k}", sd[k])
-                extra = sorted(set(sd) - set(vals))
-                if extra:
-                    raise ParameterError(f"stribeck.{sname}.{extra[0]}: unknown field")
-                sides[sname] = StribeckSide(**vals)
-            stribeck = Stribeck(**sides)
-        tcd = d.get("transition_curve")
-        if tcd is None:
-            tc = base.transition_curve
-        else:
-            if not isinstance(tcd, dict):
-                raise ParameterError("transition_curve: expected a mapping")
-            kind = tcd.get("kind", "piecewise_linear")
-            if kind not in TRANSITION_KINDS:
-                raise ParameterError(f"transition_curve.kind: must be one of {', '.join(TRANSITION_KINDS)}, got {kind!r}")
-            if kind == "piecewise_linear":
-                for k in ("z", "F"):
-                    if not isinstance(tcd.get(k), (list, tuple)):
-                        raise ParameterError(f"transition_curve.{k}: expected a list of knot values")
-                tc = TransitionCurve(
-                    kind=kind,
-                    z=tuple(_finite(f"transition_curve.z.{i}", v) for i, v in enumerate(tcd["z"])),
-                    F=tuple(_finite(f"transition_curve.F.{i}", v) for i, v in enumerate(tcd["F"])),
-                )
-            else:
-                shape = tcd.get("shape")
-                if not isinstance(shape, dict):
-                    raise ParameterError("transition_curve.shape: expected a mapping of A, z0, k")
-                tc = TransitionCurve(kind=kind, shape={k: shape[k] for k in shape})
-        effects = d.get("effects") or []
-        if not isinstance(effects, list):
-            raise ParameterError("effects: expected a list")
-        from .effects import EFFECTS
+        """Build and validate; every problem is a ParameterError naming the dotted field.
 
-        for i, eff in enumerate(effects):
-            if not isinstance(eff, dict) or eff.get("name") not in EFFECTS:
-                raise ParameterError(f"effects.{i}.name: must be one of {', '.join(EFFECTS)}")
-            if not isinstance(eff.get("params"), dict):
-                raise ParameterError(f"effects.{i}.params: expected a mapping of parameter values")
-            for k, v in eff["params"].items():
-                _finite(f"effects.{i}.params.{k}", v)
+        ``stribeck`` and ``transition_curve`` are required. The scalar fields may be left out
+        where their default means the same in every unit system (n, reversal_tol) or the file is
+        in the paper's units (rad, N*m, s); otherwise a missing one is an error, so that no
+        value in the wrong units slips in.
+        """
+        if d is None:
+            raise ParameterError("parameter file is empty (expected stribeck:, transition_curve: and the rest)")
+        if not isinstance(d, Mapping):
+            raise ParameterError(f"parameter file: expected a mapping at the top level, got {type(d).__name__}")
+        known = [f.name for f in fields(cls)]
+        unknown = sorted(str(k) for k in d if k not in known)
+        if unknown:
+            raise ParameterError(f"{unknown[0]}: unknown field (known: {', '.join(known)})"[:300])
+        units = Units.coerce(d.get("units"))
+        model = d.get("model", "leuven")
+        if model not in MODEL_KINDS:
+            raise ParameterError(f"model: must be one of {', '.join(MODEL_KINDS)}, got {model!r}"[:200])
+        stribeck = _stribeck_from(d.get("stribeck"))
+        tc = _transition_curve_from(d.get("transition_curve"))
+        scalars = {}
+        for f in _scalar_fields(cls):
+            if f.name in d and d[f.name] is not None:
+                scalars[f.name] = _number(f.name, d[f.name])
+            elif f.name == "sigma0":
+                scalars[f.name] = None
+            elif units != PAPER_UNITS and f.metadata["kind"] not in ("dimensionless", "force") and f.name != "sigma0":
+                raise ParameterError(f"{f.name}: missing; its default ({f.default:g} "
+                                     f"{PAPER_UNITS.render(f.metadata['kind'])}) is in the paper's units, and this "
+                                     f"file's are {units.position}, {units.force}, {units.time}")
+        effects = d.get("effects") or []
+        if not isinstance(effects, (list, tuple)):
+            raise ParameterError("effects: expected a list")
+        effects = _validate_effects(effects)
         unc = d.get("uncertainty") or {}
-        if not isinstance(unc, dict):
+        if not isinstance(unc, Mapping):
             raise ParameterError("uncertainty: expected a mapping of dotted paths to 1-sigma values")
         prov = d.get("provenance") or {}
-        if not isinstance(prov, dict):
+        if not isinstance(prov, Mapping):
             raise ParameterError("provenance: expected a mapping")
-        units = d.get("units") or dict(base.units)
-        if not isinstance(units, dict):
-            raise ParameterError("units: expected a mapping like {position: rad, force: N*m, time: s}")
-        sigma0 = d.get("sigma0")
-        p = cls(
-            model=str(d.get("model", "leuven")),
-            stribeck=stribeck,
-            transition_curve=tc,
-            n=_finite("n", d.get("n", base.n)),
-            sigma1=_finite("sigma1", d.get("sigma1", base.sigma1)),
-            sigma0=None if sigma0 is None else _finite("sigma0", sigma0),
-            inertia=_finite("inertia", d.get("inertia", base.inertia)),
-            reversal_tol=_finite("reversal_tol", d.get("reversal_tol", base.reversal_tol)),
-            units=dict(units),
-            effects=tuple(effects),
-            uncertainty={str(k): _finite(f"uncertainty.{k}", v) for k, v in unc.items()},
-            provenance=dict(prov),
-        )
+        p = cls(model=model, stribeck=stribeck, transition_curve=tc, units=units, effects=tuple(effects),
+                uncertainty={str(k): _number(f"uncertainty.{k}", v) for k, v in unc.items()},
+                provenance=prov, **scalars)
         if p.model == "lugre" and p.sigma0 is None:
+            p.transition_curve.validate()
+            p.stribeck.validate()
             from .lugre import lugre_sigma0_from_transition_curve
 
             p = p.replace(sigma0=lugre_sigma0_from_transition_curve(p))
         return p.validate()
 
 
+def _stribeck_from(st) -> Stribeck:
+    if st is None:
+        raise ParameterError("stribeck: missing (S(v) of eq. (7) for both velocity signs: "
+                             "positive and negative, each with Fs, Fc, vs, delta, sigma2)")
+    if not isinstance(st, Mapping):
+        raise ParameterError("stribeck: expected a mapping with 'positive' and 'negative'")
+    extra = sorted(str(k) for k in st if k not in ("positive", "negative"))
+    if extra:
+        raise ParameterError(f"stribeck.{extra[0]}: unknown field (known: positive, negative)")
+    names = [f.name for f in _scalar_fields(StribeckSide)]
+    sides = {}
+    for sname, _, _ in STRIBECK_SIDES:
+        sd = st.get(sname)
+        if not isinstance(sd, Mapping):
+            raise ParameterError(f"stribeck.{sname}: missing or not a mapping of {', '.join(names)}")
+        for k in names:
+            if k not in sd:
+                raise ParameterError(f"stribeck.{sname}.{k}: missing")
+        extra = sorted(str(k) for k in sd if k not in names)
+        if extra:
+            raise ParameterError(f"stribeck.{sname}.{extra[0]}: unknown field")
+        sides[sname] = StribeckSide(**{k: _number(f"stribeck.{sname}.{k}", sd[k]) for k in names})
+    return Stribeck(**sides)
+
+
+def _transition_curve_from(tcd) -> TransitionCurve:
+    if tcd is None:
+        raise ParameterError("transition_curve: missing (kind piecewise_linear with knots z and F, "
+                             "or tanh_linear with shape A, z0, k)")
+    if not isinstance(tcd, Mapping):
+        raise ParameterError("transition_curve: expected a mapping")
+    kind = tcd.get("kind", "piecewise_linear")
+    if not isinstance(kind, str) or kind not in TRANSITION_KINDS:
+        raise ParameterError(f"transition_curve.kind: must be one of {', '.join(TRANSITION_KINDS)}, got {kind!r}"[:200])
+    allowed = ("kind", "z", "F") if kind == "piecewise_linear" else ("kind", "shape")
+    extra = sorted(str(k) for k in tcd if k not in allowed)
+    if extra:
+        raise ParameterError(f"transition_curve.{extra[0]}: unknown field for {kind} (known: {', '.join(allowed)})")
+    if kind == "piecewise_linear":
+        for k in ("z", "F"):
+            if not isinstance(tcd.get(k), (list, tuple)):
+                raise ParameterError(f"transition_curve.{k}: expected a list of knot values")
+            if len(tcd[k]) > MAX_KNOTS:  # refuse before converting anything
+                raise ParameterError(f"transition_curve.{k}: {len(tcd[k])} knots, at most {MAX_KNOTS} are accepted")
+        return TransitionCurve(kind=kind, z=tuple(_number(f"transition_curve.z.{i}", v) for i, v in enumerate(tcd["z"])),
+                               F=tuple(_number(f"transition_curve.F.{i}", v) for i, v in enumerate(tcd["F"])))
+    shape = tcd.get("shape")
+    if not isinstance(shape, Mapping):
+        raise ParameterError("transition_curve.shape: expected a mapping of A, z0, k")
+    return TransitionCurve(kind=kind, shape=shape)
+
+
+def _validate_effects(effects) -> tuple:
+    """Each entry checked by ``model.effects.validate_effect_entry`` (the effect's own parameter
+    rules); returns the cleaned entries."""
+    from . import effects as fx
+
+    check = getattr(fx, "validate_effect_entry", None)
+    if check is not None:
+        return tuple(check(eff, f"effects.{i}") for i, eff in enumerate(effects))
+    for i, eff in enumerate(effects):
+        if not isinstance(eff, Mapping) or eff.get("name") not in fx.EFFECTS:
+            raise ParameterError(f"effects.{i}.name: must be one of {', '.join(fx.EFFECTS)}")
+        if not isinstance(eff.get("params"), Mapping):
+            raise ParameterError(f"effects.{i}.params: expected a mapping of parameter values")
+        for k, v in eff["params"].items():
+            _number(f"effects.{i}.params.{k}", v)
+    return tuple(effects)
+
+
+# -- the schema: one entry per scalar parameter ---------------------------------------------------
+def schema(params: "FrictionParams | None" = None, *, all_models: bool = False) -> tuple[ParamSpec, ...]:
+    """Every scalar parameter of ``params`` (default: the paper's set) in display order:
+    S(v) per side, the transition curve's knots (or tanh shape), then n, σ1, σ0, I, reversal tol.
+    Units are rendered in the parameter set's units. Parameters the model kind does not use are
+    left out unless ``all_models``."""
+    p = params if params is not None else default_params()
+    u = p.units
+    out = []
+    for side, sign, suffix in STRIBECK_SIDES:
+        for f in _scalar_fields(StribeckSide):
+            out.append(_spec(f, f"stribeck.{side}.{f.name}", u, sign, suffix))
+    if all_models or p.model == "leuven":
+        out.extend(knot_specs(p.transition_curve, u))
+    for f in _scalar_fields(FrictionParams):
+        if all_models or p.model in f.metadata["models"]:
+            if f.name == "sigma0" and p.sigma0 is None and not all_models:
+                continue
+            out.append(_spec(f, f.name, u))
+    return tuple(out)
+
+
+def knot_specs(tc: TransitionCurve, units: Units = PAPER_UNITS) -> tuple[ParamSpec, ...]:
+    """The free coordinates of the transition curve: z_i and F_d(z_i) for i >= 1 (the first knot
+    is (0, 0) by point symmetry), or the tanh shape's A, z0, k."""
+    if tc.kind == "tanh_linear":
+        return tuple(_spec(f, f"transition_curve.shape.{f.name}", units) for f in _scalar_fields(TanhShape))
+    fz, fF = (next(f for f in fields(TransitionCurve) if f.name == n) for n in ("z", "F"))
+    out = []
+    for i in range(1, len(tc.z)):
+        out.append(_spec(fz, f"transition_curve.z.{i}", units, index=i))
+        out.append(_spec(fF, f"transition_curve.F.{i}", units, index=i))
+    return tuple(out)
+
+
+def spec_of(params: FrictionParams, path: str) -> ParamSpec:
+    for s in schema(params, all_models=True):
+        if s.path == path:
+            return s
+    raise ParameterError(f"{path}: no such parameter")
+
+
+def get_value(params: FrictionParams, path: str) -> float:
+    """The value at a dotted path, e.g. 'stribeck.negative.Fc', 'transition_curve.F.2'."""
+    obj = params
+    try:
+        for part in path.split("."):
+            obj = obj[int(part)] if part.isdigit() else (obj[part] if isinstance(obj, Mapping) else getattr(obj, part))
+    except (AttributeError, IndexError, KeyError, TypeError):
+        raise ParameterError(f"{path}: no such parameter") from None
+    return obj
+
+
+def with_value(params: FrictionParams, path: str, value: float) -> FrictionParams:
+    """A new parameter set with one value changed (checked against the schema; the whole set is
+    validated, so e.g. a knot that breaks monotonicity is refused with its path)."""
+    x = spec_of(params, path).check(value)
+
+    def put(obj, parts):
+        head, rest = parts[0], parts[1:]
+        if isinstance(obj, tuple):
+            i = int(head)
+            return obj[:i] + (put(obj[i], rest) if rest else x,) + obj[i + 1:]
+        new = put(getattr(obj, head), rest) if rest else x
+        return replace(obj, **{head: new})
+
+    return put(params, path.split(".")).validate()
+
+
+def values(params: FrictionParams) -> dict:
+    """{dotted path: value} for every scalar parameter of the schema."""
+    return {s.path: float(get_value(params, s.path)) for s in schema(params)}
+
+
+@dataclass(frozen=True)
+class ParamRow:
+    """One line of a parameter table: the schema entry, the value and its 1-sigma uncertainty
+    (None when the parameter was held, not estimated)."""
+
+    spec: ParamSpec
+    value: float
+    stderr: float | None
+
+    @property
+    def status(self) -> str:
+        return "held" if self.stderr is None else "estimated"
+
+
+def parameter_rows(params: FrictionParams) -> tuple[ParamRow, ...]:
+    unc = params.uncertainty
+    return tuple(ParamRow(s, float(get_value(params, s.path)), unc.get(s.path)) for s in schema(params))
+
+
+# -- the paper's values ---------------------------------------------------------------------------
 def kuka_stribeck() -> Stribeck:
     """Table I: KUKA IR 361, axis 1."""
     return Stribeck(

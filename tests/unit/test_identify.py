@@ -119,7 +119,7 @@ def test_fit_cli_writes_loadable_yaml_and_nothing_on_error(tmp_path):
     assert r.returncode == 0, r.stderr
     p = load_params(out)
     assert abs(p.stribeck.positive.Fc - 27.0) < 4 * p.uncertainty["stribeck.positive.Fc"]
-    assert p.provenance["data"] == ["sample_data/constant_velocity.csv"]
+    assert list(p.provenance["data"]) == ["sample_data/constant_velocity.csv"]  # records hold tuples
     bad = tmp_path / "bad.csv"
     bad.write_text("time,position\n0,0\n1,1\n")
     out2 = tmp_path / "q.yaml"
