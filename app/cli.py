@@ -35,14 +35,11 @@ def _frame(result_runs, labels):
 
 
 def _write_csv(df, path: str) -> None:
-    from ..identify.paramfile import write_atomic
+    from .outputs import write_outputs
 
     buf = io.StringIO()
     df.to_csv(buf, index=False, float_format="%.10g")
-    try:
-        write_atomic(path, buf.getvalue())
-    except OSError as e:
-        raise UserError(f"{path}: cannot write ({e.strerror})") from None
+    write_outputs({"--out": (path, buf.getvalue())})
 
 
 def cmd_simulate(args) -> int:
@@ -55,6 +52,9 @@ def cmd_simulate(args) -> int:
         return 0
     if not args.out:
         raise UserError("simulate: --out OUT.csv is required")
+    from .outputs import check_output_path
+
+    check_output_path(args.out, "--out")  # before the work
     params = _params(args.params, args.model)
     if args.experiment:
         if args.experiment not in EXPERIMENTS:
@@ -97,8 +97,10 @@ def cmd_diagnose(args) -> int:
     from ..identify.data import load_recording, parse_column_mapping
     from ..identify.diagnose import diagnose
     from ..identify.fit import fit_recordings
-    from ..identify.paramfile import save_params, write_atomic
+    from ..identify.paramfile import params_to_yaml
+    from .outputs import Outputs
 
+    outputs = Outputs({"--json": args.json, "--html": args.html, "--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
     rec = load_recording(args.data, columns=cols, require=("time", "position"))
     if args.params:
@@ -116,14 +118,16 @@ def cmd_diagnose(args) -> int:
         raise UserError(f"diagnose: {e}") from None
     print(file=sys.stderr)
     print(d.text())
-    if args.json:
-        write_atomic(args.json, json.dumps(d.summary(), indent=2) + "\n")
-    if args.html:
-        from .report import diagnosis_html
+    with outputs:  # all or none
+        if args.json:
+            outputs.write_text(args.json, json.dumps(d.summary(), indent=2) + "\n")
+        if args.html:
+            from .report import diagnosis_html
 
-        write_atomic(args.html, diagnosis_html(d, args.data))
+            outputs.write_text(args.html, diagnosis_html(d, args.data))
+        if args.out:
+            outputs.write_text(args.out, params_to_yaml(d.params_after.validate()))
     if args.out:
-        save_params(d.params_after, args.out)
         print(f"model {'with ' + d.effect if d.effect else '(unchanged)'} -> {args.out}")
     return 0
 
@@ -131,8 +135,10 @@ def cmd_diagnose(args) -> int:
 def cmd_fit(args) -> int:
     from ..identify.data import load_recording, parse_column_mapping
     from ..identify.fit import fit_recordings
-    from ..identify.paramfile import save_params
+    from ..identify.paramfile import params_to_yaml
+    from .outputs import Outputs
 
+    outputs = Outputs({"--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
     base = _params(args.params, None)
     recs = [load_recording(path, columns=cols) for path in args.data]
@@ -147,7 +153,8 @@ def cmd_fit(args) -> int:
         raise UserError(f"fit: {e}") from None
     print(file=sys.stderr)
     print(res.report())
-    save_params(res.params, args.out)
+    with outputs:
+        outputs.write_text(args.out, params_to_yaml(res.params.validate()))
     print(f"parameters -> {args.out}")
     return 0
 
@@ -165,14 +172,16 @@ def cmd_serve(args) -> int:
 
 
 def cmd_bench(args) -> int:
+    from .outputs import Outputs
+
+    outputs = Outputs({"--json": args.json})  # checked before the work
     from bench.simulator import run_all
 
     results = run_all(quick=args.quick, progress=lambda msg: print(msg, file=sys.stderr))
     print(json.dumps(results, indent=2))
     if args.json:
-        from ..identify.paramfile import write_atomic
-
-        write_atomic(args.json, json.dumps(results, indent=2) + "\n")
+        with outputs:
+            outputs.write_text(args.json, json.dumps(results, indent=2) + "\n")
     return 0
 
 
