@@ -160,14 +160,23 @@ def cmd_fit(args) -> int:
 
 
 def cmd_serve(args) -> int:
-    from .server import serve
+    from .listen import check_listen_address, check_served_port
 
+    # host and port first: a bad one is a one-line error, never a hang or a silent move
+    addr = check_listen_address(args.host, args.port)
     if args.data:
         from pathlib import Path
 
         if not Path(args.data).is_file():
             raise UserError(f"--data: {args.data} is not a file")
-    serve(_params(args.params, None), host=args.host, port=args.port, data=args.data)
+    params = _params(args.params, None)
+    warning = addr.network_warning()
+    if warning:
+        print(warning, file=sys.stderr, flush=True)
+    from .server import serve
+
+    serve(params, host=args.host, port=args.port, data=args.data,
+          ready=lambda url: check_served_port(args.port, url))
     return 0
 
 
