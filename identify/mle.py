@@ -265,10 +265,3 @@ def _information(z_knots, F, n, fit_n, offsets, datasets):
             H[np.ix_(idx, idx)] += _hessian(f, np.append(shared, offsets[i]), np.append(h_shared, 0.05 * scale))
             i += 1
     return H
-
-
-def fit_transition_curve_unweighted(datasets, z_knots, *, n: float = 7.0) -> np.ndarray:
-    """Plain least squares on all displacements alike, ignoring the noise models: the
-    comparison the ML estimator must beat. Returns the ordinates."""
-    pooled = [PreslidingData(ds.branches, Gaussian(1.0), ds.name) for ds in datasets]
-    return fit_transition_curve(pooled, z_knots, n=n).F

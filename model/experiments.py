@@ -171,16 +171,6 @@ def triangle(t: np.ndarray, period: float, velocity: float) -> np.ndarray:
     return np.where(ph < 0.5, amp * 2 * ph, amp * 2 * (1 - ph))
 
 
-def canudas_lugre_params() -> FrictionParams:
-    """The classic LuGre example of Canudas de Wit et al. (1995), used for Figs. 1 and 2:
-    σ0 = 1e5 N/m, σ1 = √1e5 N·s/m, σ2 = 0.4 N·s/m, Fc = 1 N, Fs = 1.5 N, vs = 1e-3 m/s,
-    δ = 2, mass 1 kg (symmetric in the two directions)."""
-    pos = StribeckSide(Fs=1.5, Fc=1.0, vs=1e-3, delta=2.0, sigma2=0.4)
-    neg = StribeckSide(Fs=-1.5, Fc=-1.0, vs=-1e-3, delta=2.0, sigma2=0.4)
-    base = default_params()
-    return base.replace(model="lugre", stribeck=Stribeck(pos, neg), sigma0=1e5, sigma1=float(np.sqrt(1e5)),
-                        inertia=1.0, units={"position": "m", "force": "N", "time": "s"}).validate()
-
 
 def identified_feedforward_params(params: FrictionParams, seed: int = 7) -> FrictionParams:
     """The model the feedforward uses: the plant's S(v) and transition curve as an

@@ -7,8 +7,8 @@ import pytest
 
 from leuven_friction.identify.data import DataError, load_recording
 from leuven_friction.identify.markov import Levels, fit_stribeck, stribeck_plus_viscous
-from leuven_friction.identify.mle import Branch, Gaussian, PreslidingData, Quantized, branch_displacement, fit_transition_curve, \
-    fit_transition_curve_unweighted
+from leuven_friction.identify.mle import Branch, Gaussian, PreslidingData, Quantized, branch_displacement, fit_transition_curve
+from tests.baselines import fit_transition_curve_unweighted
 
 TRUE = {"positive": (36.0, 27.0, 0.007, 0.5, 7.7), "negative": (-63.0, -52.0, -0.004, 0.9, 8.0)}
 SPEEDS = np.array([0.001, 0.002, 0.004, 0.008, 0.015, 0.03, 0.06, 0.12, 0.25, 0.5, 1.0])

@@ -113,7 +113,8 @@ def test_lugre_does_not_close_and_dissipates_more(kuka, kuka_lugre):
 
 
 def test_lugre_symmetric_ramp_loop_closes_only_for_symmetric_extremes():
-    from leuven_friction.model.experiments import abcd_ramp, canudas_lugre_params, symmetric_ramp
+    from leuven_friction.model.experiments import abcd_ramp, symmetric_ramp
+    from tests.baselines import canudas_lugre_params
 
     p = canudas_lugre_params()  # Fig. 1 uses the classic parameters of Canudas de Wit et al.
     a, rate = 1.2, 0.5
