@@ -1,13 +1,18 @@
 """The headless fit: recordings in, a complete parameter set with uncertainties out.
 
-Connects the parts: ``segment`` finds constant-velocity levels and presliding branches,
-``markov`` fits S(v) per sign, ``mle`` fits the transition curve; whatever the data cannot
-determine keeps the default (the paper's value) and the report says so.
+Connects the parts: ``segment`` prepares each recording (thresholds from the data, velocity,
+friction sign, normal-load plateau) and finds constant-velocity levels and presliding
+branches of both kinds; ``markov`` fits S(v) per sign, holding what the levels cannot
+determine; ``mle`` fits the transition curve from all presliding branches of all files at
+once, each with its own noise model. Every parameter is either *estimated* (with a 1-σ
+uncertainty) or *held* (with the value it was held at and the reason); the report and the
+YAML's provenance say which.
 """
 
 from __future__ import annotations
 
 import datetime as _dt
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -15,100 +20,234 @@ import numpy as np
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
 
 from .data import Recording
-from .markov import NAMES, Levels, fit_stribeck
-from .mle import PreslidingData, fit_transition_curve
-from .segment import constant_velocity_levels, detect_noise, presliding_branches
 from .errors import IdentificationError
+from .markov import NAMES, Levels, SideDecision, fit_side_honest
+from .mle import Gaussian, PreslidingData, fit_transition_curve
+from .segment import Prepared, Thresholds, constant_velocity_levels, force_branches, motion_branches, noise_sd, prepare
 
-KNOT_FORCE_FRACTIONS = (0.2, 0.45, 0.7, 1.0)
-
-
-def default_knots(datasets) -> np.ndarray:
-    """Four segments, like Table II: abscissas where the longest branch of the least noisy
-    data set has reached 20, 45, 70 and 100 % of its force change (every segment holds data)."""
-    best = min(datasets, key=lambda d: getattr(d.noise, "sigma", None) or d.noise.step)
-    br = max(best.branches, key=lambda b: b.force[-1])
-    x = np.maximum.accumulate(br.displacement - br.displacement[0])
-    z = np.interp(np.array(KNOT_FORCE_FRACTIONS) * br.force[-1], br.force, x)
-    z = np.maximum.accumulate(np.maximum(z, 1e-12)) * (1.0 + 1e-9 * np.arange(len(z)))
-    return np.concatenate([[0.0], z])
+KNOT_FRACTIONS = (0.04, 0.15, 0.4, 1.0)  # of the displacement range covered by the branches
 
 
 @dataclass
 class FitResult:
     params: FrictionParams
-    stribeck_fit: dict | None = None
+    stribeck_fit: dict | None = None  # side -> markov.SideFit (None: the side is held)
     transition_fit: object | None = None
     levels: Levels | None = None
     n_branches: int = 0
     notes: list = field(default_factory=list)
     datasets: list = field(default_factory=list)
+    thresholds: dict = field(default_factory=dict)  # source -> segment.Thresholds
+    held: dict = field(default_factory=dict)  # dotted parameter path -> reason
+    decisions: dict = field(default_factory=dict)  # side -> markov.SideDecision
+    refinement: dict = field(default_factory=dict)
+
+    @property
+    def status(self) -> dict:
+        """dotted path -> 'estimated' or 'held'."""
+        out = {k: "estimated" for k in self.params.uncertainty}
+        out.update({k: "held" for k in self.held})
+        return out
 
     def report(self) -> str:
         return fit_report(self)
 
 
 def _merge_levels(parts: list[Levels]) -> Levels:
+    if not parts:
+        return Levels(*(np.zeros(0) for _ in range(4)))
     return Levels(*(np.concatenate([getattr(p, k) for p in parts]) for k in ("velocity", "friction", "variance", "count")))
 
 
+def check_n(n) -> float:
+    try:
+        x = float(n)
+    except (TypeError, ValueError):
+        raise IdentificationError(f"n: expected a number, got {n!r}") from None
+    if not math.isfinite(x) or x <= 0:
+        raise IdentificationError(f"n: the exponent of eq. (5) must be a finite number > 0, got {n!r}")
+    return x
+
+
+def knots_from_data(datasets) -> np.ndarray:
+    """Abscissas at fixed fractions of the displacement range the branches cover (so every
+    segment holds data), dropping any closer to its neighbour than two position-noise σ
+    (knots the data cannot tell apart). Refuses if fewer than one knot remains."""
+    # up to where the force change is 70 % of D: beyond, eq. (9)'s factor 1/(1 - (F/D)^n)
+    # rather than F_d shapes the displacement, and a knot there is not determined
+    def reach_of(b):
+        m = b.force <= 0.7 * b.D
+        x = b.displacement - (b.displacement[0] if b.driven == "force" else 0.0)
+        return float(np.max(x[m])) if m.any() else 0.0
+
+    reach = max(reach_of(b) for d in datasets for b in d.branches)
+    resolution = min(d.x_noise for d in datasets)
+    z = [0.0]
+    for f in KNOT_FRACTIONS:
+        zi = f * reach
+        if zi - z[-1] >= 2.0 * resolution:
+            z.append(zi)
+    if len(z) < 2:
+        raise IdentificationError(f"the presliding displacement range ({reach:.3g}) is within two position-noise σ "
+                                  f"({resolution:.3g}): the transition curve cannot be resolved")
+    return np.array(z)
+
+
+def check_knots(knots, datasets) -> np.ndarray:
+    z = np.asarray(knots, dtype=float)
+    if z.ndim != 1 or len(z) < 2 or z[0] != 0.0 or np.any(~np.isfinite(z)) or np.any(np.diff(z) <= 0):
+        raise IdentificationError("knots: abscissas must start at 0 and increase strictly")
+    resolution = min(d.x_noise for d in datasets)
+    close = np.flatnonzero(np.diff(z) < resolution)
+    if len(close):
+        i = int(close[0]) + 1
+        raise IdentificationError(f"knots: z[{i}] = {z[i]:.3g} is closer than the position noise ({resolution:.3g}) "
+                                  f"to z[{i - 1}]: the data cannot tell these knots apart")
+    return z
+
+
+def _units_of(recordings) -> dict:
+    units = None
+    for r in recordings:
+        u = {"position": r.units.get("position", "rad"), "force": r.units.get("force", r.units.get("friction", "N*m")),
+             "time": "s"}
+        if units is None:
+            units = u
+        elif u["position"] != units["position"]:
+            raise IdentificationError(f"{r.source}: position in {u['position']} but another file has {units['position']}: "
+                                      f"fit one kind of machine at a time")
+    return units or {"position": "rad", "force": "N*m", "time": "s"}
+
+
 def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None = None, knots=None,
-                   n: float = 7.0, fit_n: bool = False, progress=None) -> FitResult:
-    """Fit S(v) (Markov) and F_d (maximum likelihood) from one or more recordings."""
+                   n: float = 7.0, fit_n: bool = False, progress=None, thresholds: dict | None = None,
+                   friction_sign: str = "auto", refine: bool = True) -> FitResult:
+    """Fit S(v) (Markov) and F_d (maximum likelihood) from one or more recordings.
+
+    ``thresholds`` overrides derived segmentation thresholds by name (see
+    ``segment.Thresholds``); ``friction_sign`` is 'auto', 'action' or 'reaction'."""
     say = progress or (lambda frac, msg: None)
+    n = check_n(n)
+    if friction_sign not in ("auto", "action", "reaction"):
+        raise IdentificationError(f"friction sign: one of auto, action, reaction; got {friction_sign!r}")
+    if not recordings:
+        raise IdentificationError("nothing to fit: no recordings given")
     p = base or default_params()
-    notes = []
-    say(0.05, "finding constant-velocity levels")
-    levels = _merge_levels([constant_velocity_levels(r) for r in recordings if r.force is not None or r.friction is not None])
-    stribeck_fit = None
-    if np.sum(levels.velocity > 0) >= 6 and np.sum(levels.velocity < 0) >= 6:
-        say(0.2, f"Markov estimator on {len(levels.velocity)} levels")
-        stribeck_fit = fit_stribeck(levels)
-        sides = {k: StribeckSide(**fit.values) for k, fit in stribeck_fit.items()}
-        p = p.replace(stribeck=Stribeck(**sides))
-    else:
-        notes.append(f"S(v) not fitted: {int(np.sum(levels.velocity > 0))} positive and "
-                     f"{int(np.sum(levels.velocity < 0))} negative constant-velocity levels found, need 6 of each; "
-                     f"kept the parameter file's values")
+    notes: list = []
+    held: dict = {}
+    say(0.05, "deriving thresholds and finding constant-velocity levels")
+    preps: list[Prepared] = []
+    for r in recordings:
+        try:
+            preps.append(prepare(r, friction_sign=friction_sign, overrides=thresholds))
+        except IdentificationError as e:
+            raise IdentificationError(str(e) if str(e).startswith(r.source) else f"{r.source}: {e}") from None
+    for pr in preps:
+        notes.extend(f"{pr.source}: {m}" for m in pr.notes + pr.th.notes)
+    per_file = [constant_velocity_levels(pr) for pr in preps]
+    levels = _merge_levels(per_file)
+    for pr, lv in zip(preps, per_file):
+        notes.append(f"{pr.source}: {len(lv.velocity)} constant-velocity level(s) "
+                     f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)")
+
+    # --- S(v): Markov estimator per side, honest about what the levels determine ------------
+    say(0.2, f"Markov estimator on {len(levels.velocity)} levels")
+    decisions = {side: fit_side_honest(levels, sign) for side, sign in (("positive", 1), ("negative", -1))}
+    sides = {}
+    for side, sign in (("positive", 1), ("negative", -1)):
+        dec = decisions[side]
+        other = decisions["negative" if sign > 0 else "positive"]
+        if dec.fit is None:
+            if other.fit is not None:
+                vals = {k: -v if k in ("Fs", "Fc", "vs") else v for k, v in other.fit.values.items()}
+                reason = f"no {side}-velocity levels: mirrored from the {'negative' if sign > 0 else 'positive'} side"
+            else:
+                vals = {k: getattr(getattr(p.stribeck, side), k) for k in NAMES}
+                reason = f"no {side}-velocity levels: kept the starting parameter file's value"
+            held.update({f"stribeck.{side}.{k}": reason for k in NAMES})
+            sides[side] = StribeckSide(**vals)
+        else:
+            held.update({f"stribeck.{side}.{k}": why for k, why in dec.held.items()})
+            sides[side] = StribeckSide(**dec.fit.values)
+    p = p.replace(stribeck=Stribeck(**sides))
+    stribeck_fit = {s: d.fit for s, d in decisions.items()}
+
+    # --- presliding: both kinds of branches, one likelihood --------------------------------
     say(0.4, "finding presliding branches")
     datasets = []
-    for r in recordings:
-        if r.force is None or r.position is None:
-            continue
-        br = presliding_branches(r, p.stribeck.positive.Fs, p.stribeck.negative.Fs)
-        if br:
-            # the noise of the position signal where it matters: on the presliding branches
-            datasets.append(PreslidingData(br, detect_noise([b.displacement for b in br]), name=r.source))
+    slow = np.min(np.abs(levels.velocity)) if len(levels.velocity) else np.inf
+    for pr in preps:
+        v_max = max(pr.th.v_floor, 0.3 * slow) if np.isfinite(slow) else 4.0 * pr.th.v_floor
+        fb = force_branches(pr, p.stribeck.positive.Fs, p.stribeck.negative.Fs, v_max)
+        if fb:
+            ds = PreslidingData(fb, pr.position_noise, name=f"{pr.source} (force-driven)")
+            ds.x_noise = noise_sd(pr.position_noise)
+            datasets.append(ds)
+        mb = motion_branches(pr)
+        if mb:
+            ds = PreslidingData(mb, Gaussian(pr.th.f_noise), name=f"{pr.source} (motion-driven)")
+            ds.x_noise = max(pr.th.x_noise, 1e-300)
+            datasets.append(ds)
+        if not fb and not mb:
+            notes.append(f"{pr.source}: no presliding branches (no applied-force ramps with reversals in presliding, "
+                         f"no reversals of a prescribed motion with measured friction)")
+        else:
+            notes.append(f"{pr.source}: {len(fb)} force-driven and {len(mb)} motion-driven presliding branch(es)")
     n_br = sum(len(d.branches) for d in datasets)
     tfit = None
     if n_br:
-        if knots is None:
-            knots = default_knots(datasets)
+        z = knots_from_data(datasets) if knots is None else check_knots(knots, datasets)
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
-        tfit = fit_transition_curve(datasets, knots, n=n, fit_n=fit_n)
+        tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+        bad = [i for i in range(1, len(tfit.F)) if not (tfit.stderr[i] < 0.5 * (tfit.F[i] - tfit.F[i - 1]) + 0.5 * tfit.F[i])]
+        if bad:
+            notes.append(f"transition curve: F_d at knot(s) {bad} has σ comparable to its value: weakly determined")
         p = p.replace(transition_curve=TransitionCurve(kind="piecewise_linear", z=tuple(map(float, tfit.z)),
                                                       F=tuple(map(float, tfit.F))), n=float(tfit.n))
         notes.extend(tfit.notes)
+        if not fit_n:
+            held["n"] = f"fixed at {n:g} (the paper's choice; --fit-n estimates it)"
     else:
-        notes.append("transition curve not fitted: no presliding force ramps found; kept the parameter file's curve")
-    if stribeck_fit is None and tfit is None:
-        raise IdentificationError("nothing to fit: the data hold neither constant-velocity levels in both directions "
-                         "nor presliding force ramps")
+        held["transition_curve"] = "no presliding data: kept the starting parameter file's curve"
+        held["n"] = "no presliding data: kept the starting parameter file's value"
+    if all(d.fit is None for d in decisions.values()) and tfit is None:
+        raise IdentificationError("nothing to fit: the data hold neither constant-velocity levels nor presliding "
+                                  "branches (force ramps with reversals, or reversals of a motion with measured friction)")
+    for k in ("sigma1", "inertia"):
+        held.setdefault(k, "not estimated by this fit: kept the starting parameter file's value")
+
     unc = {}
-    if stribeck_fit:
-        for side, fit in stribeck_fit.items():
+    for side, dec in decisions.items():
+        if dec.fit is not None:
             for k in NAMES:
-                unc[f"stribeck.{side}.{k}"] = fit.stderr[k]
-            notes.extend(f"{side}: {m}" for m in fit.notes)
+                path = f"stribeck.{side}.{k}"
+                if path not in held:
+                    unc[path] = dec.fit.stderr[k]
+            notes.extend(f"{side}: {m}" for m in dec.fit.notes)
+            notes.append(f"{side} side: {dec.model}")
     if tfit is not None:
         for i in range(1, len(tfit.F)):
             unc[f"transition_curve.F.{i}"] = float(tfit.stderr[i])
         if tfit.n_stderr is not None:
             unc["n"] = tfit.n_stderr
+
+    res = FitResult(p, stribeck_fit, tfit, levels, n_br, notes, datasets, {pr.source: pr.th for pr in preps}, held,
+                    decisions)
+    if refine:
+        try:
+            from .refine import refine_fit
+
+            say(0.7, "output-error refinement")
+            res = refine_fit(res, preps)
+        except ImportError:
+            res.refinement = {"done": False, "reason": "output-error refinement is not available in this version"}
+    else:
+        res.refinement = {"done": False, "reason": "skipped (--no-refine)"}
+
     cost = {}
-    if stribeck_fit:
-        cost["markov_chi2"] = {k: v.chi2 for k, v in stribeck_fit.items()}
-        cost["markov_dof"] = {k: v.dof for k, v in stribeck_fit.items()}
+    if any(d.fit is not None for d in decisions.values()):
+        cost["markov_chi2"] = {k: d.fit.chi2 for k, d in decisions.items() if d.fit is not None}
+        cost["markov_dof"] = {k: d.fit.dof for k, d in decisions.items() if d.fit is not None}
     if tfit is not None:
         cost["ml_negative_log_likelihood"] = tfit.nll
     prov = {
@@ -116,42 +255,74 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         "estimator": "Markov (weighted least squares) for S(v); maximum likelihood for the transition curve",
         "noise_models": {d.name: repr(d.noise) for d in datasets},
         "cost": cost,
+        "held": dict(res.held),
+        "thresholds": {src: {ln.split("=")[0].strip(): ln.split("=", 1)[1].strip() for ln in th.lines()}
+                       for src, th in res.thresholds.items()},
+        "refinement": {k: v for k, v in res.refinement.items() if isinstance(v, (bool, int, float, str))},
         "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
     }
     say(1.0, "done")
-    p = p.replace(uncertainty=unc, provenance=prov).validate()
-    return FitResult(p, stribeck_fit, tfit, levels, n_br, notes, datasets)
+    res.params = res.params.replace(uncertainty={**unc, **res.params.uncertainty} if res.refinement.get("done") else unc,
+                                    provenance=prov, units=_units_of(recordings)).validate()
+    return res
 
 
 def fit_report(res: FitResult) -> str:
-    """Table I / Table II style summary, correlations above 0.5, and what was assumed."""
-    lines = ["[[Fit statistics]]"]
+    """Thresholds, Table I / Table II style summary (held values marked), correlations above
+    0.5, held parameters with reasons, and what was assumed."""
+    lines = ["[[Thresholds (derived from each recording; override with --threshold name=value)]]"]
+    for src, th in res.thresholds.items():
+        lines.append(f"    {src}:")
+        lines.extend(f"        {ln}" for ln in th.lines())
+    lines.append("[[Fit statistics]]")
+    u = res.params.units
+    lines.append(f"    units                    : position {u.get('position')}, force {u.get('force')}, time {u.get('time')}")
     if res.levels is not None:
         lines.append(f"    constant-velocity levels : {len(res.levels.velocity)}")
     lines.append(f"    presliding branches      : {res.n_branches}")
-    if res.stribeck_fit:
-        for side, fit in res.stribeck_fit.items():
-            lines.append(f"    Markov chi2 ({side})  : {fit.chi2:.3g} for {fit.dof} degrees of freedom")
-        lines.append("[[S(v), eq. (7) — Table I form]]")
-        lines.append(f"    {'parameter':10s} {'positive velocity':>24s} {'negative velocity':>24s}")
-        for k in NAMES:
-            pos, neg = res.stribeck_fit["positive"], res.stribeck_fit["negative"]
-            lines.append(f"    {k:10s} {pos.values[k]:>12.4g} ± {pos.stderr[k]:<9.2g} {neg.values[k]:>12.4g} ± {neg.stderr[k]:<9.2g}")
+    for side, dec in res.decisions.items():
+        if dec.fit is not None:
+            lines.append(f"    Markov chi2 ({side})  : {dec.fit.chi2:.3g} for {dec.fit.dof} degrees of freedom ({dec.model})")
+    lines.append("[[S(v), eq. (7) — Table I form]]")
+    lines.append(f"    {'parameter':10s} {'positive velocity':>24s} {'negative velocity':>24s}")
+    unc = res.params.uncertainty
+    for k in NAMES:
+        cells = []
+        for side in ("positive", "negative"):
+            val = getattr(getattr(res.params.stribeck, side), k)
+            path = f"stribeck.{side}.{k}"
+            cells.append(f"{val:>12.4g} (held)   " if path in res.held else f"{val:>12.4g} ± {unc.get(path, float('nan')):<9.2g}")
+        lines.append(f"    {k:10s} {cells[0]} {cells[1]}")
+    corr_lines = []
+    for side, dec in res.decisions.items():
+        if dec.fit is None:
+            continue
+        C = dec.fit.correlation
+        for i in range(5):
+            for j in range(i + 1, 5):
+                if abs(C[i, j]) > 0.5:
+                    corr_lines.append(f"    {side:8s} C({NAMES[i]}, {NAMES[j]}) = {C[i, j]:+.3f}")
+    if corr_lines:
         lines.append("[[Correlations (|C| > 0.5)]]")
-        for side, fit in res.stribeck_fit.items():
-            C = fit.correlation
-            pairs = sorted(((abs(C[i, j]), NAMES[i], NAMES[j], C[i, j]) for i in range(5) for j in range(i + 1, 5)), reverse=True)
-            for a, ni, nj, c in pairs:
-                if a > 0.5:
-                    lines.append(f"    {side:8s} C({ni}, {nj}) = {c:+.3f}")
+        lines.extend(corr_lines)
     tf = res.transition_fit
     if tf is not None:
         lines.append("[[Transition curve F_d — Table II form]]")
         lines.append(f"    {'z':>12s} {'F_d(z)':>12s}")
-        for i, (z, F) in enumerate(zip(tf.z, tf.F)):
-            err = f" ± {tf.stderr[i]:.2g}" if i else "   (fixed)"
+        for i, (z, F) in enumerate(zip(res.params.transition_curve.z, res.params.transition_curve.F)):
+            err = f" ± {unc.get(f'transition_curve.F.{i}', float('nan')):.2g}" if i else "   (fixed)"
             lines.append(f"    {z:>12.4g} {F:>12.5g}{err}")
-        lines.append(f"    n = {tf.n:g}" + (f" ± {tf.n_stderr:.2g}" if tf.n_stderr is not None else " (fixed)"))
+        lines.append(f"    n = {res.params.n:g}" + (f" ± {unc['n']:.2g}" if "n" in unc else " (held)"))
+    if res.refinement:
+        lines.append("[[Output-error refinement]]")
+        rf = res.refinement
+        if rf.get("done"):
+            lines.append(f"    RMS residual {rf['rms_before']:.4g} -> {rf['rms_after']:.4g} ({rf.get('what', '')})")
+        else:
+            lines.append(f"    not done: {rf.get('reason', '')}")
+    if res.held:
+        lines.append("[[Held parameters (not estimated) and why]]")
+        lines.extend(f"    {k}: {why}" for k, why in res.held.items())
     if res.notes:
         lines.append("[[Notes]]")
         lines.extend(f"    {m}" for m in res.notes)

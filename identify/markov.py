@@ -56,72 +56,189 @@ def _jacobian(theta, v):
     return np.column_stack([e, 1.0 - e, (Fs - Fc) * e * ad * delta / vs, -(Fs - Fc) * e * ad * la, v])
 
 
-def fit_side(levels: Levels, sign: int, start: dict | None = None) -> SideFit:
+def fit_side(levels: Levels, sign: int, start: dict | None = None, hold: dict | None = None) -> SideFit:
     """Weighted least squares for one sign (scipy ``least_squares``, trust-region reflective).
 
-    Needs at least 6 levels (5 parameters and one degree of freedom). Without ``start`` it
-    tries nine starting points (S(v) has local minima in vs and δ); with one, only that."""
+    ``hold`` maps parameter names to fixed values; the rest are estimated (at least one
+    degree of freedom is needed). Without ``start`` it tries nine starting points (S(v) has
+    local minima in vs and δ); with one, only that."""
+    hold = dict(hold or {})
+    free = [i for i, k in enumerate(NAMES) if k not in hold]
     m = levels.velocity * sign > 0
     v, F, var = levels.velocity[m], levels.friction[m], levels.variance[m]
     word = "positive" if sign > 0 else "negative"
-    if len(v) < 6:
-        raise IdentificationError(f"Markov estimator: only {len(v)} constant-velocity level(s) with {word} velocity; need at least 6")
+    if len(v) < len(free) + 1:
+        raise IdentificationError(f"Markov estimator: only {len(v)} constant-velocity level(s) with {word} velocity; "
+                                  f"need at least {len(free) + 1}")
     w = 1.0 / np.sqrt(np.maximum(var, 1e-18 * np.max(np.abs(F)) ** 2))
     order = np.argsort(np.abs(v))
     v, F, w = v[order], F[order], w[order]
     a = np.abs(v)
     # starting point: σ2 from the fastest levels, F_c from the middle, F_s from the slowest
     hi = a >= np.quantile(a, 0.7)
-    s2 = max(0.0, np.polyfit(v[hi], F[hi], 1)[0]) if hi.sum() >= 2 else 0.0
+    s2 = max(0.0, np.polyfit(v[hi], F[hi], 1)[0]) if hi.sum() >= 2 and np.ptp(v[hi]) > 0 else 0.0
     Fc0 = np.min(np.abs(F - s2 * v)) * sign
     Fs0 = (F[0] - s2 * v[0])
     if abs(Fs0) <= abs(Fc0):
         Fs0 = Fc0 * 1.1
     # Table I convention: negative-side Fs, Fc, vs are negative
     big = np.inf
+    tiny = 1e-300
     if sign > 0:
-        lo_b = np.array([1e-12, 1e-12, 1e-12, 0.05, 0.0])
+        lo_b = np.array([tiny, tiny, tiny, 0.05, 0.0])
         hi_b = np.array([big, big, big, 5.0, big])
     else:
         lo_b = np.array([-big, -big, -big, 0.05, 0.0])
-        hi_b = np.array([-1e-12, -1e-12, -1e-12, 5.0, big])
+        hi_b = np.array([-tiny, -tiny, -tiny, 5.0, big])
+    full0 = np.array([hold.get(k, np.nan) for k in NAMES])
+
+    def expand(theta):
+        th = full0.copy()
+        th[free] = theta
+        return th
 
     def resid(theta):
-        return w * (F - stribeck_plus_viscous(theta, v))
+        return w * (F - stribeck_plus_viscous(expand(theta), v))
 
     def jac(theta):
-        return -w[:, None] * _jacobian(theta, v)
+        return -w[:, None] * _jacobian(expand(theta), v)[:, free]
 
+    lo_f, hi_f = lo_b[free], hi_b[free]
+    fin_lo, fin_hi = np.isfinite(lo_f), np.isfinite(hi_f)
+    lo_pad, hi_pad = lo_f.copy(), hi_f.copy()
+    lo_pad[fin_lo] += np.abs(lo_f[fin_lo]) * 1e-9 + 1e-300
+    hi_pad[fin_hi] -= np.abs(hi_f[fin_hi]) * 1e-9 + 1e-300
+    pad = lambda x0: np.clip(x0, lo_pad, hi_pad)  # noqa: E731
     if start is not None:
-        starts = [np.clip([start[k] for k in NAMES], lo_b + 1e-12, hi_b - 1e-12)]
+        starts = [pad(np.array([start[k] for k in NAMES])[free])]
     else:
-        starts = [np.clip([Fs0, Fc0, sign * vs0, d0, s2], lo_b + 1e-12, hi_b - 1e-12)
+        starts = [pad(np.array([Fs0, Fc0, sign * vs0, d0, s2])[free])
                   for vs0 in np.quantile(a, [0.1, 0.3, 0.6]) for d0 in (0.5, 1.0, 2.0)]
+        uniq = []
+        for x0 in starts:
+            if not any(np.allclose(x0, u) for u in uniq):
+                uniq.append(x0)
+        starts = uniq
     best = None
     for x0 in starts:
-        r = least_squares(resid, x0, jac=jac, bounds=(lo_b, hi_b), method="trf", x_scale="jac", max_nfev=2000)
+        r = least_squares(resid, x0, jac=jac, bounds=(lo_f, hi_f), method="trf", x_scale="jac", max_nfev=2000)
         if best is None or r.cost < best.cost:
             best = r
     J = best.jac
     notes = []
+    sd_full = np.zeros(5)
+    cov = None
     try:
         cov = np.linalg.inv(J.T @ J)
     except np.linalg.LinAlgError:
-        cov = np.linalg.pinv(J.T @ J)
         notes.append("the information matrix is singular: some parameters are not identifiable from these levels")
-    sd = np.sqrt(np.clip(np.diag(cov), 0, None))
-    corr = cov / np.outer(np.where(sd > 0, sd, 1), np.where(sd > 0, sd, 1))
-    for i, name in enumerate(NAMES):
-        if np.any(np.isclose(best.x[i], [lo_b[i], hi_b[i]])):
-            notes.append(f"{name} is at its bound: its error bar is not meaningful")
+    corr = np.eye(5)
+    if cov is not None:
+        d = np.diag(cov)
+        sd_full[free] = np.sqrt(np.abs(d))
+        neg = [NAMES[free[i]] for i in range(len(free)) if d[i] < 0]
+        if neg:
+            notes.append(f"negative variance for {', '.join(neg)}: not identifiable from these levels")
+        s = np.where(sd_full[free] > 0, sd_full[free], 1)
+        corr[np.ix_(free, free)] = cov / np.outer(s, s)
+    else:
+        sd_full[free] = np.inf
+    x = expand(best.x)
+    for i in free:
+        if np.any(np.isclose(x[i], [lo_b[i], hi_b[i]])):
+            notes.append(f"{NAMES[i]} is at its bound: its error bar is not meaningful")
     return SideFit(
-        values=dict(zip(NAMES, map(float, best.x))),
-        stderr=dict(zip(NAMES, map(float, sd))),
+        values=dict(zip(NAMES, map(float, x))),
+        stderr=dict(zip(NAMES, map(float, sd_full))),
         correlation=corr,
         chi2=float(2 * best.cost),
-        dof=int(len(v) - 5),
+        dof=int(len(v) - len(free)),
         notes=notes,
     )
+
+
+@dataclass
+class SideDecision:
+    """The fit of one side with what was held and why."""
+
+    fit: SideFit | None
+    held: dict  # name -> reason
+    model: str  # "Stribeck + viscous", "Stribeck + viscous (δ held)", "Coulomb + viscous", "Coulomb", "held"
+
+
+def _trouble(fit: SideFit, names) -> list:
+    """Names whose estimate is not informative: σ above half the value, or a bound hit."""
+    bad = []
+    for k in names:
+        val, sd = fit.values[k], fit.stderr[k]
+        if not np.isfinite(sd) or sd > 0.5 * abs(val) or any(k in m and ("bound" in m or "negative" in m) for m in fit.notes):
+            bad.append(k)
+    return bad
+
+
+def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> SideDecision:
+    """Fit what the levels of one side determine, hold the rest with a stated reason.
+
+    ≥ 6 levels, two of them below the fitted Stribeck velocity: the full eq. (7) + σ2·v; if δ
+    is not determined, δ is held at ``delta_hold`` and the rest refitted; if vs, Fs still are
+    not, or fewer levels, or none below vs: Coulomb + viscous (Fs = Fc, vs and δ held);
+    one level: Coulomb only (σ2 held at 0); none: the whole side is held."""
+    m = levels.velocity * sign > 0
+    k = int(m.sum())
+    a = np.abs(levels.velocity[m])
+    held = {}
+    if k == 0:
+        return SideDecision(None, {n: "no constant-velocity levels on this side" for n in NAMES}, "held")
+    if k >= 6:
+        fit = fit_side(levels, sign)
+        below = int(np.sum(a < abs(fit.values["vs"])))
+        bad = _trouble(fit, NAMES)
+        if below >= 2 and not bad:
+            return SideDecision(fit, {}, "Stribeck + viscous")
+        if below >= 2 and bad == ["delta"]:
+            fit2 = fit_side(levels, sign, hold={"delta": delta_hold})
+            if not _trouble(fit2, ("Fs", "Fc", "vs", "sigma2")):
+                return SideDecision(fit2, {"delta": f"not determined by the levels (σ > half the value); held at {delta_hold:g}"},
+                                    "Stribeck + viscous (δ held)")
+        why = (f"only {below} level(s) below the Stribeck velocity" if below < 2
+               else f"{', '.join(bad)} not determined by the levels (σ > half the value, a bound or a negative variance)")
+    else:
+        why = f"only {k} level(s) on this side (the Stribeck curve needs at least 6)"
+    s2_ok = k >= 2 and np.ptp(a) > 0.2 * np.max(a)
+    vs_hold = sign * float(np.min(a))
+    if s2_ok:
+        fit = _coulomb_viscous(levels, sign, viscous=True)
+        held = {"Fs": f"{why}: held at Fc (no Stribeck effect)", "vs": f"{why}: held at the slowest level's speed",
+                "delta": f"{why}: held at {delta_hold:g}"}
+        fit.values["vs"], fit.values["delta"] = vs_hold, delta_hold
+        return SideDecision(fit, held, "Coulomb + viscous")
+    fit = _coulomb_viscous(levels, sign, viscous=False)
+    fit.values["vs"], fit.values["delta"] = vs_hold, delta_hold
+    held = {"Fs": f"{why}: held at Fc", "vs": f"{why}: held at the slowest level's speed",
+            "delta": f"{why}: held at {delta_hold:g}", "sigma2": f"{why}; the levels do not span enough speeds: held at 0"}
+    return SideDecision(fit, held, "Coulomb")
+
+
+def _coulomb_viscous(levels: Levels, sign: int, viscous: bool) -> SideFit:
+    """Weighted linear least squares F = Fc + σ2·v (or F = Fc), Fs = Fc."""
+    m = levels.velocity * sign > 0
+    v, F, var = levels.velocity[m], levels.friction[m], levels.variance[m]
+    W = 1.0 / np.maximum(var, 1e-30 * np.max(F * F))
+    A = np.column_stack([np.ones_like(v), v]) if viscous else np.ones((len(v), 1))
+    AtW = A.T * W
+    cov = np.linalg.inv(AtW @ A)
+    beta = cov @ (AtW @ F)
+    r = F - A @ beta
+    chi2 = float(np.sum(W * r * r))
+    Fc = float(beta[0])
+    s2 = float(beta[1]) if viscous else 0.0
+    sd_fc = float(np.sqrt(cov[0, 0]))
+    values = {"Fs": Fc, "Fc": Fc, "vs": sign * 1.0, "delta": 1.0, "sigma2": max(s2, 0.0)}
+    stderr = {"Fs": 0.0, "Fc": sd_fc, "vs": 0.0, "delta": 0.0, "sigma2": float(np.sqrt(cov[1, 1])) if viscous else 0.0}
+    notes = []
+    if viscous and s2 < 0:
+        notes.append("sigma2 came out negative; held at 0")
+    return SideFit(values, stderr, np.eye(5), chi2, int(len(v) - A.shape[1]), notes=notes)
 
 
 def fit_stribeck(levels: Levels, start=None) -> dict:

@@ -71,12 +71,26 @@ class Quantized:
 
 @dataclass
 class Branch:
-    """One presliding branch: force change since the reversal (≥ 0, increasing) and measured
-    displacement (in the branch's direction), with D = F_s - F_b of its direction (> 0)."""
+    """One presliding branch: force change since the reversal (≥ 0) and displacement from it
+    (in the branch's direction), with D = F_s - F_b of its direction (> 0).
+
+    ``driven='force'``: the force is the applied input and the displacement is measured (its
+    noise model is the data set's). ``driven='motion'``: the displacement is the imposed input
+    and the friction change is measured (the data set's noise model is on force)."""
 
     force: np.ndarray
     displacement: np.ndarray
     D: float
+    driven: str = "force"
+
+
+def branch_prediction(br: Branch, z_knots, F_knots, n, offset):
+    """(measured, predicted) of one branch in the space its noise model lives in."""
+    if br.driven == "motion":
+        fg = np.linspace(0.0, 0.999 * br.D, GRID)
+        xg = branch_displacement(z_knots, F_knots, n, br.D, fg)
+        return br.force, np.interp(br.displacement - offset, xg, fg)
+    return br.displacement, branch_displacement(z_knots, F_knots, n, br.D, br.force) + offset
 
 
 @dataclass
@@ -84,6 +98,7 @@ class PreslidingData:
     branches: list
     noise: object
     name: str = "data"
+    x_noise: float = 0.0  # σ of the displacement (what the knots must resolve)
 
 
 @dataclass
@@ -129,8 +144,7 @@ def _nll_F(F, n, offsets, z_knots, datasets):
     i = 0
     for ds in datasets:
         for br in ds.branches:
-            pred = branch_displacement(z_knots, F, n, br.D, br.force) + offsets[i]
-            total += ds.noise.nll(br.displacement, pred)
+            total += ds.noise.nll(*branch_prediction(br, z_knots, F, n, offsets[i]))
             i += 1
     return total
 
@@ -148,15 +162,15 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
         # the force at which the longest branch has moved z_i (z ≈ x while F_d ≪ D)
         br = max(branches, key=lambda b: np.ptp(b.displacement))
         x_rel = np.maximum.accumulate(br.displacement - br.displacement[0])
-        F_start = np.interp(z_knots, x_rel, br.force, right=br.force[-1])
-        F_start = np.maximum.accumulate(F_start) + 1e-6 * np.max(br.force) * np.arange(len(z_knots))
+        F_start = np.interp(z_knots, x_rel, np.maximum.accumulate(br.force), right=np.max(br.force))
+        F_start = np.maximum.accumulate(F_start) + 1e-3 * np.max(br.force) * np.arange(len(z_knots))
         F_start[0] = 0.0
     x_scale = max(np.ptp(b.displacement) for b in branches) or 1.0
     theta0 = np.log(np.diff(F_start))
     if fit_n:
         theta0 = np.append(theta0, np.log(n))
     # offsets in units of the displacement span: keeps the problem well scaled
-    theta0 = np.append(theta0, [(b.displacement[0]) / x_scale for b in branches])
+    theta0 = np.append(theta0, [(b.displacement[0] if b.driven == "force" else 0.0) / x_scale for b in branches])
 
     def split(theta):
         th = theta.copy()
@@ -169,8 +183,7 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
         i = 0
         for ds in datasets:
             for br in ds.branches:
-                pred = branch_displacement(z_knots, F, nn, br.D, br.force) + off[i]
-                out.append(ds.noise.residuals(br.displacement, pred))
+                out.append(ds.noise.residuals(*branch_prediction(br, z_knots, F, nn, off[i])))
                 i += 1
         return np.concatenate(out)
 
@@ -200,9 +213,9 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
         for ds in datasets:
             for br in ds.branches:
                 m = len(br.force)
-                pred = branch_displacement(z_knots, F, nn, br.D, br.force) + off[i]
-                h = 1e-7
-                J[row : row + m, ns + i] = (ds.noise.residuals(br.displacement, pred + h * x_scale) - r0[row : row + m]) / h
+                h = 1e-6
+                J[row : row + m, ns + i] = (ds.noise.residuals(*branch_prediction(br, z_knots, F, nn, off[i] + h * x_scale))
+                                            - r0[row : row + m]) / h
                 row += m
                 i += 1
         return J
@@ -259,9 +272,10 @@ def _information(z_knots, F, n, fit_n, offsets, datasets):
             def f(p, br=br, noise=ds.noise):
                 FF = np.concatenate([[0.0], p[:nk]])
                 nn = p[nk] if fit_n else n
-                return noise.nll(br.displacement, branch_displacement(z_knots, FF, nn, br.D, br.force) + p[-1])
+                return noise.nll(*branch_prediction(br, z_knots, FF, nn, p[-1]))
 
             idx = list(range(ns)) + [ns + i]
-            H[np.ix_(idx, idx)] += _hessian(f, np.append(shared, offsets[i]), np.append(h_shared, 0.05 * scale))
+            h_off = 0.05 * scale if br.driven == "force" else 1e-3 * max(np.ptp(br.displacement), 1e-300)
+            H[np.ix_(idx, idx)] += _hessian(f, np.append(shared, offsets[i]), np.append(h_shared, h_off))
             i += 1
     return H

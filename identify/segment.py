@@ -1,125 +1,432 @@
-"""Cutting a recording into the pieces the estimators need, without hand work.
+"""Cutting a recording into the pieces the estimators need, with thresholds taken from the data.
 
-* constant-velocity segments (both directions) → ``markov.Levels``;
-* presliding branches (slow applied-force ramps between reversals) → ``mle.Branch``;
-* the noise model of the position signal (quantised encoder or Gaussian sensor).
+No absolute constants: every threshold is derived from the recording itself (sample rate,
+noise floors of position, velocity and force estimated from the data, the velocity levels
+present) and collected in a :class:`Thresholds` record that the fit report prints and the
+user can override by name (``fit --threshold v_floor=1e-4``).
+
+* :func:`prepare` — velocity from position (Savitzky–Golay slope, window chosen from the
+  position noise and the slowest motion), the better of that and a recorded velocity column,
+  the friction sign (action or reaction), the normal-load plateau;
+* :func:`constant_velocity_levels` → ``markov.Levels``;
+* :func:`force_branches` — presliding from applied-force ramps between turning points;
+* :func:`motion_branches` — presliding from a reversed prescribed motion with measured friction:
+  each crossing from one sliding level to the other is a sample of the transition curve.
 """
 
 from __future__ import annotations
 
-import numpy as np
+from dataclasses import dataclass, field, fields
 
-from .data import Recording, velocity_of
+import numpy as np
+from numba import njit
+from scipy.signal import savgol_filter
+
+from .data import Recording
+from .errors import DataError, IdentificationError
 from .markov import Levels
 from .mle import Branch, Gaussian, Quantized
-from .errors import IdentificationError
 
 
-def _smooth(a, w):
-    if w <= 1:
-        return a
-    k = np.ones(w) / w
-    return np.convolve(a, k, mode="same")
+def robust_sd(a) -> float:
+    """Standard deviation from the median absolute deviation (outliers, steps ignored)."""
+    a = np.asarray(a, dtype=float)
+    if len(a) == 0:
+        return 0.0
+    return float(1.4826 * np.median(np.abs(a - np.median(a))))
 
 
-def constant_velocity_levels(rec: Recording, *, rel_tol: float = 0.03, min_samples: int = 50,
-                             v_floor: float = 2e-4, min_travel: float = 1e-3, settle_fraction: float = 0.4) -> Levels:
-    """Runs where the (smoothed) velocity stays within ``rel_tol`` of its run median and above
-    ``v_floor`` over at least ``min_travel`` of motion (presliding creep never travels that
-    far: Table II's curve ends at 5e-4 rad); the first ``settle_fraction`` of each run is dropped (the approach to sliding
-    is slow at low speed). Friction: the friction column if present, else the applied force
-    (at constant velocity I·ẍ = 0, so f = F)."""
-    F = rec.friction if rec.friction is not None else rec.force
-    if F is None:
-        raise IdentificationError(f"{rec.source}: needs a force or friction column for constant-velocity levels")
-    v = _smooth(velocity_of(rec), 9)
-    w = 10
-    steady = np.abs(v) > v_floor
-    same = np.zeros(len(v), dtype=bool)
-    same[w:] = np.abs(v[w:] - v[:-w]) <= rel_tol * np.abs(v[w:])
-    steady &= same
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], steady.astype(np.int8), [0]])))
-    out_v, out_F, out_var, out_n = [], [], [], []
-    for start, end in zip(edges[::2], edges[1::2]):
-        if end - start < min_samples:
-            continue
-        s = start + int(settle_fraction * (end - start))
-        seg = slice(s, end - 5)
-        vs = v[seg]
-        # one level, not a slow acceleration: the whole kept part within rel_tol of its median
-        if np.ptp(vs) > 2 * rel_tol * abs(np.median(vs)):
-            continue
-        travel = abs(rec.position[end - 1] - rec.position[start]) if rec.position is not None else np.inf
-        if travel < min_travel:
-            continue
-        cnt = seg.stop - seg.start
-        out_v.append(float(np.mean(vs)))
-        out_F.append(float(np.mean(F[seg])))
-        out_var.append(float(np.var(F[seg], ddof=1) / cnt))
-        out_n.append(cnt)
-    return Levels(np.array(out_v), np.array(out_F), np.array(out_var), np.array(out_n))
+def white_noise_sd(a) -> float:
+    """σ of white noise on a slow signal: second differences have variance 6σ²."""
+    a = np.asarray(a, dtype=float)
+    return robust_sd(np.diff(a, 2)) / np.sqrt(6.0) if len(a) > 3 else 0.0
 
 
 def detect_noise(x) -> object:
-    """Encoder-like (values on a grid of one step) → ``Quantized``; else ``Gaussian`` with σ
-    from the spread of second differences (a slow signal's curvature is negligible there;
-    white noise of σ gives second differences of variance 6σ²)."""
+    """Encoder-like (values on a grid of one step) → ``Quantized``; else ``Gaussian``."""
     parts = [np.asarray(a, dtype=float) for a in (x if isinstance(x, (list, tuple)) else [x])]
     x = np.concatenate(parts)
     d = np.abs(np.concatenate([np.diff(a) for a in parts]))
-    d = d[d > 0]
+    scale = np.max(np.abs(x)) if len(x) else 1.0
+    d = d[d > 1e-9 * scale]
     if len(d):
-        q = np.min(d)
+        q = float(np.quantile(d, 0.01)) if len(d) > 100 else float(np.min(d))
         k = x / q
-        if q > 0 and np.max(np.abs(k - np.round(k))) < 1e-6 and len(np.unique(np.round(k))) < 0.5 * len(x):
-            return Quantized(step=float(q), jitter=float(0.25 * q))
-    # robust (median absolute deviation): velocity steps elsewhere in the file are outliers
-    d2 = np.concatenate([np.diff(a, 2) for a in parts if len(a) > 2])
-    sigma = float(1.4826 * np.median(np.abs(d2 - np.median(d2))) / np.sqrt(6.0))
-    return Gaussian(sigma=max(sigma, 1e-15))
+        if q > 0 and np.quantile(np.abs(k - np.round(k)), 0.99) < 1e-3:
+            return Quantized(step=q, jitter=0.25 * q)
+    sigma = float(np.sqrt(np.mean([white_noise_sd(a) ** 2 for a in parts if len(a) > 3]))) if parts else 0.0
+    return Gaussian(sigma=max(sigma, 1e-12 * max(scale, 1e-300)))
 
 
-def presliding_branches(rec: Recording, Fs_pos: float, Fs_neg: float, *, v_max: float = 2e-4,
-                        min_points: int = 20, decimate: int = 1) -> list[Branch]:
-    """Branches of the applied force between its turning points, where the joint stays in
-    presliding (|v| < ``v_max``). Each branch is cut where it would close the previous
-    internal loop (passing the older turning point), since past it the path follows an older
-    curve. D = F_s(direction) − F_b with F_b the force at the reversal."""
-    if rec.force is None or rec.position is None:
-        raise IdentificationError(f"{rec.source}: presliding branches need position and applied force columns")
-    f = rec.force
-    fs = _smooth(f, 5)
-    df = np.sign(np.diff(fs))
-    for i in range(1, len(df)):  # hold the direction through flat stretches
-        if df[i] == 0:
-            df[i] = df[i - 1]
-    turns = [0] + list(np.flatnonzero(df[1:] != df[:-1]) + 1) + [len(f) - 1]
-    v = np.abs(_smooth(velocity_of(rec), 9))
-    branches = []
-    for k in range(len(turns) - 1):
-        a, b = turns[k], turns[k + 1]
-        if b - a < min_points:
-            continue
-        direction = np.sign(f[b] - f[a])
-        if direction == 0:
-            continue
-        fb = f[a]
-        dF = direction * (f[a:b + 1] - fb)
-        limit = np.inf
-        if k >= 1:
-            prev = f[turns[k - 1]]
-            if direction * (prev - fb) > 0:
-                limit = direction * (prev - fb)
-        D = (Fs_pos if direction > 0 else -Fs_neg) - direction * fb
-        if D <= 0:
-            continue
-        keep = (dF >= 0) & (dF < min(limit, 0.97 * D)) & (v[a:b + 1] < v_max)
-        idx = np.flatnonzero(keep)
-        if len(idx) < min_points:
-            continue
-        idx = idx[: np.argmax(np.diff(np.concatenate([idx, [idx[-1] + 2]])) > 1) + 1]  # contiguous from the reversal
-        idx = idx[::decimate]
-        if len(idx) < min_points:
-            continue
-        branches.append(Branch(force=dF[idx], displacement=direction * rec.position[a:b + 1][idx], D=float(D)))
-    return branches
+def noise_sd(noise) -> float:
+    """Standard deviation of a position noise model (a uniform quantisation error: q/√12)."""
+    return noise.step / np.sqrt(12.0) if isinstance(noise, Quantized) else noise.sigma
+
+
+@dataclass
+class Thresholds:
+    """Every threshold of the segmentation, derived from the recording (SI units)."""
+
+    rate: float = 0.0  # median sample rate (Hz)
+    gap: float = 0.0  # a time step longer than this splits the recording (s)
+    x_noise: float = 0.0  # position noise σ (quantisation: step/√12)
+    window: int = 0  # Savitzky–Golay window (samples)
+    v_noise: float = 0.0  # σ of the velocity estimate used
+    f_noise: float = 0.0  # σ of the force (or friction) signal
+    v_floor: float = 0.0  # below this |v| counts as standstill / presliding
+    rel_tol: float = 0.0  # a constant-velocity run stays within rel_tol·|v| (+ 3 v_noise)
+    min_run: int = 0  # shortest constant-velocity run (samples)
+    f_turn: float = 0.0  # force excursion that confirms a turning point
+    x_turn: float = 0.0  # displacement that confirms a motion reversal
+    load_tol: float = 0.0  # normal load within this of its plateau counts as constant
+    min_travel: float = 0.0  # a constant-velocity run travels at least this (presliding excursions do not)
+    velocity_source: str = ""
+    notes: list = field(default_factory=list)
+
+    def override(self, values: dict) -> "Thresholds":
+        names = {f.name for f in fields(self)} - {"notes", "velocity_source"}
+        for k, v in (values or {}).items():
+            if k not in names:
+                raise DataError(f"--threshold {k}: unknown threshold (known: {', '.join(sorted(names))})")
+            cur = getattr(self, k)
+            setattr(self, k, int(v) if isinstance(cur, int) and not isinstance(cur, bool) else float(v))
+            self.notes.append(f"{k} set to {v:g} by the user")
+        return self
+
+    def lines(self) -> list[str]:
+        out = []
+        for f in fields(self):
+            if f.name in ("notes",):
+                continue
+            v = getattr(self, f.name)
+            out.append(f"{f.name:15s} = {v:.4g}" if isinstance(v, float) else f"{f.name:15s} = {v}")
+        return out
+
+
+@dataclass
+class Prepared:
+    """A recording with the derived signals the segmentation works on."""
+
+    rec: Recording
+    velocity: np.ndarray
+    friction: np.ndarray | None  # measured friction (action sign) or None
+    force: np.ndarray | None  # applied force or None
+    position_noise: object
+    usable: np.ndarray  # samples not excluded (normal load off its plateau)
+    chunks: list  # (start, end) index ranges without time gaps
+    th: Thresholds
+    sign_flipped: bool = False
+    notes: list = field(default_factory=list)
+
+    @property
+    def source(self) -> str:
+        return self.rec.source
+
+
+def _chunks(t, gap):
+    cut = np.flatnonzero(np.diff(t) > gap) + 1
+    edges = np.concatenate([[0], cut, [len(t)]])
+    return [(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:]) if b - a >= 2]
+
+
+def _slope(t, x, w, uniform):
+    """Local least-squares slope over ``w`` samples: Savitzky–Golay (order 2) on uniform
+    sampling, a running linear regression (cumulative sums) on irregular sampling."""
+    n = len(x)
+    if n < 5:
+        return np.gradient(x, t) if n > 1 else np.zeros(n)
+    w = min(w, n - (1 - n % 2))
+    if w < 3:
+        return np.gradient(x, t)
+    if uniform:
+        dt = (t[-1] - t[0]) / (n - 1)
+        return savgol_filter(x, w, 2, deriv=1, delta=dt, mode="interp")
+    h = w // 2
+    tc = t - t[0]
+    xc = x - x[0]
+    c = lambda a: np.concatenate([[0.0], np.cumsum(a)])  # noqa: E731
+    S1, St, Sx, Stt, Stx = c(np.ones(n)), c(tc), c(xc), c(tc * tc), c(tc * xc)
+    i = np.arange(n)
+    lo, hi = np.clip(i - h, 0, n), np.clip(i + h + 1, 0, n)
+    m = S1[hi] - S1[lo]
+    st, sx, stt, stx = St[hi] - St[lo], Sx[hi] - Sx[lo], Stt[hi] - Stt[lo], Stx[hi] - Stx[lo]
+    den = stt - st * st / m
+    return np.where(den > 0, (stx - st * sx / m) / np.where(den > 0, den, 1.0), 0.0)
+
+
+def _slope_noise(x_noise, w, dt):
+    """σ of a least-squares slope over w equally spaced samples with white noise x_noise."""
+    return x_noise * np.sqrt(12.0 / (w * (w * w - 1.0))) / dt
+
+
+def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | None = None) -> Prepared:
+    """Derive the thresholds and signals of one recording; see the module docstring."""
+    if rec.position is None:
+        raise IdentificationError(f"{rec.source}: needs a position column to find velocity levels and presliding")
+    if rec.force is None and rec.friction is None:
+        raise IdentificationError(f"{rec.source}: needs a force (applied force/torque) or a friction column")
+    th = Thresholds()
+    t, x = rec.time, rec.position
+    dts = np.diff(t)
+    dt = float(np.median(dts))
+    th.rate = 1.0 / dt
+    th.gap = 5.0 * dt
+    uniform = bool(np.ptp(dts) <= 0.01 * dt)
+    noise = detect_noise(x)
+    th.x_noise = float(noise_sd(noise))
+    chunks = _chunks(t, th.gap)
+    n = len(t)
+    # the slowest sustained motion, on a coarse scale (0.5 % of the recording per difference)
+    W = max(2, n // 200)
+    vc = (x[W:] - x[:-W]) / (t[W:] - t[:-W])
+    moving = np.abs(vc) > 10.0 * th.x_noise / (W * dt)
+    v_low = float(np.quantile(np.abs(vc[moving]), 0.1)) if moving.sum() > 10 else 0.0
+    # window: the slope noise at most 2 % of the slow motions, n/1000 … n/400 samples (at
+    # least 5): long enough to average a controller's velocity ripple, short against the
+    # runs so accelerations stay visible
+    w = max(5, (n // 1000) | 1)
+    if v_low > 0:
+        while w < max(5, n // 400) and _slope_noise(th.x_noise, w, dt) > 0.02 * v_low:
+            w += 2
+    th.window = int(w)
+    v_pos = np.zeros(n)
+    for a, b in chunks:
+        v_pos[a:b] = _slope(t[a:b], x[a:b], w, uniform)
+    sd_pos = float(_slope_noise(th.x_noise, w, dt))
+    velocity, th.velocity_source, th.v_noise = v_pos, f"position (Savitzky–Golay, {w} samples)", sd_pos
+    if rec.velocity is not None:
+        sd_col = white_noise_sd(rec.velocity)
+        if sd_col < sd_pos:
+            velocity, th.velocity_source, th.v_noise = rec.velocity, f"velocity column {rec.columns.get('velocity', '')!r}", sd_col
+        th.notes.append(f"velocity: column noise {sd_col:.3g}, position-derived noise {sd_pos:.3g}; "
+                        f"used the {'column' if sd_col < sd_pos else 'position-derived velocity'}")
+    F = rec.friction if rec.friction is not None else rec.force
+    th.f_noise = max(white_noise_sd(F), 1e-12 * float(np.max(np.abs(F)) or 1.0))
+    th.v_floor = 5.0 * th.v_noise
+    th.rel_tol = 0.06
+    th.min_run = int(max(20, 2 * w))
+    th.f_turn = 6.0 * th.f_noise
+    th.x_turn = max(6.0 * th.x_noise, 2.0 * getattr(noise, "step", 0.0))
+    th.min_travel = _travel_threshold(x, th.x_turn)
+    usable = np.ones(n, dtype=bool)
+    notes = []
+    if rec.normal_load is not None:
+        N = rec.normal_load
+        N0 = float(np.quantile(N, 0.95))
+        th.load_tol = max(5.0 * white_noise_sd(N), 0.02 * abs(N0))
+    th.override(overrides or {})
+    if rec.normal_load is not None:
+        usable = np.abs(rec.normal_load - N0) <= th.load_tol
+        notes.append(f"normal load: plateau {N0:.4g} N; {int((~usable).sum())} samples off the plateau "
+                     f"(|N - N0| > {th.load_tol:.3g} N) left out")
+    flipped = False
+    friction = rec.friction
+    if friction is not None:
+        mv = (np.abs(velocity) > th.v_floor) & usable
+        s = float(np.median(friction[mv] * np.sign(velocity[mv]))) if mv.sum() > 10 else 1.0
+        detected = "reaction" if s < 0 else "action"
+        choice = detected if friction_sign == "auto" else friction_sign
+        if friction_sign == "auto":
+            notes.append(f"friction sign: logged as {detected} force "
+                         f"({'negative' if s < 0 else 'positive'} while the position increases)"
+                         + ("; flipped to the action convention" if detected == "reaction" else ""))
+        else:
+            notes.append(f"friction sign: {choice} (forced; the data look like {detected})")
+        if choice == "reaction":
+            friction = -friction
+            flipped = True
+    return Prepared(rec, velocity, friction, rec.force if rec.friction is None else None, noise, usable, chunks, th,
+                    flipped, notes)
+
+
+def _travel_threshold(x, h) -> float:
+    """Split the displacements between motion reversals into presliding excursions and
+    sliding strokes at the widest gap of their (log) distribution; 0 when there is no
+    clear gap (a ratio below 5)."""
+    tp = _turning_points(np.ascontiguousarray(x, dtype=float), h)
+    e = np.sort(np.abs(np.diff(x[tp])))
+    e = e[e > 0]
+    if len(e) < 2:
+        return 0.0
+    le = np.log(e)
+    i = int(np.argmax(np.diff(le)))
+    if le[i + 1] - le[i] < np.log(5.0):
+        return 0.0
+    return float(np.sqrt(e[i] * e[i + 1]))
+
+
+def _batch_var_of_mean(a, batches=8):
+    """Variance of the mean of a correlated series, from the spread of batch means."""
+    m = len(a) // batches
+    if m < 2:
+        return float(np.var(a, ddof=1) / max(len(a), 1))
+    bm = a[: m * batches].reshape(batches, m).mean(axis=1)
+    return max(float(np.var(bm, ddof=1) / batches), float(np.var(a, ddof=1) / len(a)))
+
+
+def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) -> Levels:
+    """Runs where |v| > v_floor and v stays within rel_tol·|v| + 3·v_noise of itself over a
+    window; the first ``settle_fraction`` of each run is dropped (the approach to sliding),
+    and a run whose friction still trends (halves differ by > 4σ) is not a level. Level
+    velocity = travel / time over the kept part (exact on quantised positions); variance of
+    the mean friction from batch means (the noise is not white under feedback control)."""
+    th, rec = prep.th, prep.rec
+    F = prep.friction if prep.friction is not None else prep.force
+    v, x, t = prep.velocity, rec.position, rec.time
+    w = max(th.window, 5)
+    out = ([], [], [], [])
+    for a, b in prep.chunks:
+        vv = v[a:b]
+        steady = (np.abs(vv) > th.v_floor) & prep.usable[a:b]
+        same = np.zeros(len(vv), dtype=bool)
+        same[w:] = np.abs(vv[w:] - vv[:-w]) <= th.rel_tol * np.abs(vv[w:]) + 3 * th.v_noise
+        same[:-w] &= same[w:]
+        steady &= same & (np.sign(vv) == np.sign(np.roll(vv, w)))
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], steady.astype(np.int8), [0]])))
+        for s0, e0 in zip(edges[::2], edges[1::2]):
+            if e0 - s0 < th.min_run:
+                continue
+            s = a + s0 + int(settle_fraction * (e0 - s0))
+            e = a + e0 - w // 2
+            if e - s < th.min_run:
+                continue
+            vk = v[s:e]
+            med = np.median(vk)
+            if np.max(np.abs(vk - med)) > 2 * th.rel_tol * abs(med) + 6 * th.v_noise:
+                continue
+            vel = (x[e - 1] - x[s]) / (t[e - 1] - t[s])
+            if vel * med <= 0 or abs(x[a + e0 - 1] - x[a + s0]) < th.min_travel:
+                continue
+            f = F[s:e]
+            h = len(f) // 2
+            se = np.sqrt(_batch_var_of_mean(f[:h], 4) + _batch_var_of_mean(f[h:], 4))
+            if abs(np.mean(f[:h]) - np.mean(f[h:])) > 4 * se:
+                continue
+            out[0].append(float(vel))
+            out[1].append(float(np.mean(f)))
+            out[2].append(_batch_var_of_mean(f))
+            out[3].append(e - s)
+    return Levels(*(np.array(o, dtype=float) for o in out))
+
+
+@njit(cache=True)
+def _turning_points(s, h):
+    """Indices of alternating extrema of ``s``, each confirmed by a move of ``h`` away
+    (first and last sample included)."""
+    n = len(s)
+    idx = np.empty(n, np.int64)
+    cnt = 0
+    idx[cnt] = 0
+    cnt += 1
+    direction = 0
+    hi_i, hi_v, lo_i, lo_v = 0, s[0], 0, s[0]
+    for i in range(1, n):
+        y = s[i]
+        if y > hi_v:
+            hi_i, hi_v = i, y
+        if y < lo_v:
+            lo_i, lo_v = i, y
+        if direction >= 0 and hi_v - y > h:
+            if hi_i != idx[cnt - 1]:
+                idx[cnt] = hi_i
+                cnt += 1
+            direction = -1
+            lo_i, lo_v = i, y
+        elif direction <= 0 and y - lo_v > h:
+            if lo_i != idx[cnt - 1]:
+                idx[cnt] = lo_i
+                cnt += 1
+            direction = 1
+            hi_i, hi_v = i, y
+    if idx[cnt - 1] != n - 1:
+        idx[cnt] = n - 1
+        cnt += 1
+    return idx[:cnt]
+
+
+def force_branches(prep: Prepared, Fs_pos: float, Fs_neg: float, v_max: float, *, min_points: int = 20) -> list[Branch]:
+    """Applied-force ramps between turning points (confirmed by ``f_turn``), while the
+    system stays in presliding (|v| < ``v_max``). Each branch is cut where it would close the
+    previous internal loop. D = F_s(direction) − F_b, F_b the force at the reversal."""
+    rec, th = prep.rec, prep.th
+    if prep.force is None:
+        return []
+    out = []
+    for a0, b0 in prep.chunks:
+        f = prep.force[a0:b0]
+        fs = savgol_filter(f, min(len(f) - (1 - len(f) % 2), max(5, th.window | 1)), 1) if len(f) > 7 else f
+        turns = _turning_points(fs, th.f_turn)
+        x = rec.position[a0:b0]
+        v = np.abs(prep.velocity[a0:b0])
+        ok = prep.usable[a0:b0]
+        for k in range(len(turns) - 1):
+            a, b = turns[k], turns[k + 1]
+            if b - a < min_points:
+                continue
+            direction = np.sign(fs[b] - fs[a])
+            if direction == 0:
+                continue
+            fb = fs[a]
+            dF = direction * (fs[a:b + 1] - fb)
+            limit = np.inf
+            if k >= 1:
+                prev = fs[turns[k - 1]]
+                if direction * (prev - fb) > 0:
+                    limit = direction * (prev - fb)
+            D = (Fs_pos if direction > 0 else -Fs_neg) - direction * fb
+            if D <= 0:
+                continue
+            keep = (dF >= 0) & (dF < min(limit, 0.97 * D)) & (v[a:b + 1] < v_max) & ok[a:b + 1]
+            stop = np.flatnonzero(~keep)
+            m = int(stop[0]) if len(stop) else len(keep)
+            if m < min_points or dF[m - 1] < 10 * th.f_noise:
+                continue
+            out.append(Branch(force=np.maximum.accumulate(dF[:m]), displacement=direction * x[a:a + m], D=float(D),
+                              driven="force"))
+    return out
+
+
+def motion_branches(prep: Prepared, *, min_points: int = 10) -> list[Branch]:
+    """Reversals of a prescribed motion with measured friction. After each reversal (a
+    position extremum confirmed by ``x_turn``) the friction crosses from the old sliding
+    level F_b towards the new one; the crossing, up to 90 % of the way, is one branch with
+    the displacement from the reversal as input and the friction change as the measured
+    output. D = new level − F_b (eq. (5) at the sliding velocity reached)."""
+    rec, th = prep.rec, prep.th
+    if prep.friction is None:
+        return []
+    out = []
+    for a0, b0 in prep.chunks:
+        x = rec.position[a0:b0]
+        F = prep.friction[a0:b0]
+        v = prep.velocity[a0:b0]
+        ok = prep.usable[a0:b0]
+        turns = _turning_points(x, th.x_turn)
+        for k in range(1, len(turns) - 1):
+            r, nxt = turns[k], turns[k + 1]
+            direction = np.sign(x[nxt] - x[r])
+            if direction == 0 or not ok[r]:
+                continue
+            # leave the reversal from its last sample (a dwell holds the extremum)
+            at = np.flatnonzero(direction * (x[r:nxt] - x[r]) <= 0.5 * th.x_turn / 6.0)
+            s = r + (int(at[-1]) if len(at) else 0)
+            # F_b: friction at the reversal (mean over the dwell, or the last samples before it)
+            lo = max(turns[k - 1], r - 2 * th.window)
+            pre = F[lo:s + 1][np.abs(v[lo:s + 1]) <= th.v_floor]
+            Fb = float(np.mean(pre)) if len(pre) >= 3 else float(F[s])
+            # the new sliding level: friction over the steady middle of the stroke
+            mid = slice(s + (nxt - s) // 3, s + 2 * (nxt - s) // 3)
+            if mid.stop - mid.start < 5 or not np.all(ok[mid]):
+                continue
+            level = float(np.median(F[mid]))
+            D = direction * (level - Fb)
+            if D < 20 * th.f_noise:
+                continue
+            dF = direction * (F[s:nxt] - Fb)
+            dx = direction * (x[s:nxt] - x[s])
+            past = np.flatnonzero(dF > 0.9 * D)
+            m = int(past[0]) if len(past) else 0
+            if m < min_points or dx[m - 1] <= th.x_turn:
+                continue
+            out.append(Branch(force=dF[:m], displacement=dx[:m], D=float(D), driven="motion"))
+    return out

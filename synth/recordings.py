@@ -146,13 +146,13 @@ def _run(mode, n_out, sub, dt, u_ff, v_ref, x_ref, kp, ki, tach_noise, fmod, kmo
     for j in range(n_out):
         m = fmod[j]
         kk = kmod[j]
-        if mode == 1:
-            e = v_ref[j] - (v + tach_noise[j])
-            integ += e * dt * sub
-            u = kp * e + ki * integ + u_ff[j]
-        else:
+        if mode != 1:
             u = u_ff[j]
         for s in range(sub):
+            if mode == 1:  # the velocity loop runs at the internal rate; the log decimates
+                e = v_ref[j] - (v + tach_noise[j])
+                integ += e * dt
+                u = kp * e + ki * integ + u_ff[j]
             # sticking stiffness fraction (for the micro-damping)
             up, lo = _limits(v, sp, sn)
             kst = 0.0
@@ -214,7 +214,7 @@ def _random_machine(kind: str, rng) -> dict:
         Fc = rng.uniform(3.0, 12.0)
         vs = rng.uniform(0.02, 0.08)
         s2 = rng.uniform(0.5, 3.0)
-        inertia = rng.uniform(0.05, 0.4)
+        inertia = rng.uniform(1.0, 4.0)
         zr = rng.uniform(1.5e-3, 4e-3)
     elif kind == "linear_stage":
         Fc = rng.uniform(8.0, 40.0)
@@ -267,14 +267,15 @@ def _schedule_force_ramps(Fs_pos, Fs_neg, rate_force, dt, rng):
     return np.concatenate(seg)
 
 
-def _schedule_velocity_sweep(levels, dt, rng, one_sided, t_acc=0.2):
-    """v_ref: 0 → level in t_acc, hold 1–2.5 s (longer at low speed to travel), back to 0,
-    short rest; levels positive then negative (unless one-sided)."""
+def _schedule_velocity_sweep(levels, dt, rng, one_sided, vs, t_acc=0.2):
+    """v_ref: 0 → level in t_acc, hold 1–2.5 s (plus 2·sqrt(vs/level) s: breakaway under
+    PI control takes longer at low speed), back to 0, short rest; levels positive then
+    negative (unless one-sided)."""
     out = []
     signs = (1,) if one_sided else (1, -1)
     for lv in levels:
         for sg in signs:
-            hold = max(rng.uniform(1.0, 2.5), 0.0)
+            hold = rng.uniform(1.0, 2.5) + 2.0 * np.sqrt(vs / lv)
             out.append(np.linspace(0, sg * lv, int(t_acc / dt), endpoint=False))
             out.append(np.full(int(hold / dt), sg * lv))
             out.append(np.linspace(sg * lv, 0, int(t_acc / dt), endpoint=False))
@@ -319,10 +320,6 @@ def make_recording(kind: str = "robot_joint", seed: int = 0, *, rate: float | No
     k, alpha, inertia, sigma1 = mach["k"], mach["alpha"], mach["inertia"], mach["sigma1"]
     rate = float(rate or {"robot_joint": 500.0, "linear_stage": 1000.0, "tribometer": 200.0}[kind])
     dt_out = 1.0 / rate
-    omega = np.sqrt(k.sum() * 1.5 / inertia)  # stiffest stuck plant (stiffness modifier up to 1.5)
-    dt_stable = 0.25 / omega if kind != "tribometer" else dt_out
-    sub = max(1, int(np.ceil(dt_out / dt_stable)))
-    dt = dt_out / sub
     units, factors = KIND_UNITS[kind]
     units, factors = dict(units), dict(factors)
 
@@ -335,22 +332,26 @@ def make_recording(kind: str = "robot_joint", seed: int = 0, *, rate: float | No
         Fs_p, Fs_n = st["positive"]["Fs"], st["negative"]["Fs"]
         ramp_rate = 0.5 * Fs_p * rng.uniform(0.8, 1.2)  # force per second
         u_pre = _schedule_force_ramps(Fs_p, Fs_n, ramp_rate / duration_scale, dt_out, rng)
-        vref = _schedule_velocity_sweep(levels, dt_out, rng, one_sided)
+        vref = _schedule_velocity_sweep(levels, dt_out, rng, one_sided, vs_mag)
         n_pre, n_cl = len(u_pre), len(vref)
         mode_arr = np.concatenate([np.zeros(n_pre, np.int64), np.ones(n_cl, np.int64)])
         u_ff = np.concatenate([u_pre, np.zeros(n_cl)])
         v_ref = np.concatenate([np.zeros(n_pre), vref])
         x_ref = np.zeros(len(u_ff))
         segments = {"presliding_ramps": (0.0, n_pre * dt_out), "velocity_sweep": (n_pre * dt_out, (n_pre + n_cl) * dt_out)}
-        wc = 40.0  # velocity loop bandwidth (rad/s)
-        kp, ki = inertia * wc, inertia * wc * wc / 4.0
+        # velocity PI: stiff enough to overcome the negative slope of the Stribeck curve
+        # (no stick-slip at the slow levels), integral corner at a tenth of the bandwidth
+        slope = max((sp[0] - sp[1]) / abs(sp[2]), (sn[1] - sn[0]) / abs(sn[2]))
+        kp = max(inertia * 40.0, 3.0 * slope)
+        ki = kp * (kp / inertia) / 10.0
         N_sched = None
     else:
         if levels is None:
-            levels = np.array([2e-4])  # 0.2 mm/s
-        L = 0.23e-3
+            levels = abs(st["positive"]["vs"]) * np.geomspace(0.3, 8.0, 6)  # stroke speeds around the Stribeck velocity
+        L = 0.5e-3 if len(levels) > 1 else 0.23e-3
         n_load = int(2.0 / dt_out)
-        strokes = _schedule_strokes(L, list(levels), dt_out, dwell=0.5, t_acc=0.02, n_strokes=int(6 * duration_scale) or 1)
+        strokes = _schedule_strokes(L, list(levels), dt_out, dwell=0.5, t_acc=0.02,
+                                    n_strokes=max(1, int(round(max(6, 2 * len(levels)) * duration_scale))))
         strokes = np.concatenate([np.zeros(int(0.5 / dt_out)), strokes])
         x_ref = np.concatenate([np.zeros(n_load), strokes, np.full(n_load, strokes[-1])])
         N0 = rng.uniform(3.0, 6.0)
@@ -363,6 +364,12 @@ def make_recording(kind: str = "robot_joint", seed: int = 0, *, rate: float | No
                     "load_down": ((n_load + len(strokes)) * dt_out, len(x_ref) * dt_out)}
     n = len(mode_arr)
     t = np.arange(n) * dt_out
+    # internal step: well inside the stability limits of the stiffest stuck plant (stiffness
+    # modifier up to 1.5) and of the velocity loop
+    omega = np.sqrt(k.sum() * 1.5 / inertia)
+    dt_stable = min(0.25 / omega, 0.3 * inertia / kp if kp > 0 else np.inf) if kind != "tribometer" else dt_out
+    sub = max(1, int(np.ceil(dt_out / dt_stable)))
+    dt = dt_out / sub
     if normal_load is not None:
         N_sched = np.broadcast_to(np.asarray(normal_load(t), dtype=float), (n,)).copy()
     noise = {
