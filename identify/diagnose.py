@@ -1,141 +1,554 @@
-"""The discrepancy workflow: compare, name, add, refit, show the gap shrink.
+"""The discrepancy workflow: compare where the data are informative, name an effect only on
+out-of-sample evidence, add it, refit, look again.
 
-1. **Compare** — simulate the current model on the recorded motion (the path of
-   ``leuven-friction simulate --input``) and break the residual down by regime.
-2. **Name** — the alternative every effect must beat is the current model with S(v) refitted
-   to every sample by simulation (output error). Every candidate of ``model.effects.EFFECTS``
-   is screened against that model's residual (its columns fitted by least squares, its shape
-   parameter scanned; the presliding effects by re-simulation). The ``leading`` candidates are
-   then refitted properly — S(v) and the effect together, by simulation — and judged by the
-   Bayesian information criterion with the effective number of independent samples (lag-1
-   autocorrelation of the residual), plus a practical threshold: an effect must remove at least
-   ``MIN_REDUCTION`` of the RMS gap to be named (on long recordings BIC alone calls a 1 %
-   improvement "very strong").
-3. **Add** — the winner becomes part of the model (its parameters in ``effects``, the stretched
-   transition curve, or the direction asymmetry) with the refitted S(v), and the gap before
-   and after is reported overall and per regime.
+1. **Compare** (``comparison_of``). A recording with measured friction and a prescribed
+   motion is compared in friction: the model is driven along the recorded path, smoothed to
+   the scale of its noise or encoder step (quantisation is a measurement, not motion). A
+   recording with an applied force and a measured position is compared in position: the plant
+   I·ẍ = f − F is simulated from the applied force in short windows, each started at the
+   measured position and velocity with the hysteresis memory carried over from the previous
+   window (output error; the position is never differentiated twice). The noise floor of the
+   compared signal is estimated from the recording and printed.
+2. **The alternative.** The current model with its friction level g and presliding stiffness
+   κ0 refitted (two numbers that mean something) is what every effect must beat.
+3. **Candidates** (``model.effects.EFFECTS``): each is screened (its shape parameter — time
+   constant, wavelength from the spectrum of the residual against position, reversal count —
+   chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
+   least squares through ``model.effects`` itself.
+4. **Out-of-sample decision.** Blocked cross-validation over time: the record is cut into
+   ``4·folds`` contiguous blocks, dealt round-robin to ``folds`` folds; the alternative and
+   each candidate are refitted on the other folds and scored on the held-out one. A
+   candidate is named only if it lowers the held-out error in most of the folds where it
+   changes the prediction at all, and lowers the pooled held-out RMS by ``min_gain``. A BIC
+   with the effective number of samples is reported as a second line.
+5. **Confounding.** Two passing candidates whose corrections are alike (correlation above
+   ``confound_corr``) and neither of which predicts clearly better out of sample are reported
+   as confounded — each one's evidence and the experiment that would separate them — and
+   neither is named.
+6. **Several effects.** Name, add, refit all together, look again, until nothing passes; the
+   gap after every step is kept.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import least_squares, minimize_scalar
+from scipy.optimize import least_squares
+from scipy.signal import savgol_filter
 
-from ..model import FrictionParams, Stribeck, StribeckSide, simulate_displacement, transition_curve_values
-from ..model.effects import (EFFECTS, SHAPE, Signals, apply_effects, basis, direction_scaled_path, reversal_count,
-                           stiffness_scaled)
+from ..model import FrictionParams, TransitionCurve, simulate_displacement, simulate_force
+from ..model.effects import EFFECTS, Context, Signals, effect_scales, significant_reversals
+from .data import DataError, Recording
 
-from .data import DataError, Recording, velocity_of
 
-MIN_REDUCTION = 0.10  # RMS fraction an effect must remove to be named
-BIC_THRESHOLD = -10.0  # "very strong" evidence on Kass & Raftery's scale
-V_SLIDE = 1e-3  # |v| above which a sample counts as sliding (position units per second)
-NEAR_REVERSAL_S = 0.1
+INFORMATIVE = 0.01  # a held-out fold counts if the candidate moves its SSE by this fraction
+
+# ---------------------------------------------------------------- settings (all relative)
+@dataclass(frozen=True)
+class Settings:
+    folds: int = 5
+    blocks_per_fold: int = 20
+    min_gain: float = 0.03  # pooled held-out RMS must fall by this fraction
+    confound_corr: float = 0.7  # corrections this alike explain the same residual
+    clear_margin: float = 0.25  # the better of two alike candidates must gain this much more (relative)
+    max_effects: int = 3
+    candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
+
+
+# ---------------------------------------------------------------- the comparison
+@dataclass
+class Comparison:
+    """What is compared, where, and how noisy it is (everything derived from the recording)."""
+
+    space: str  # "friction" or "position"
+    time: np.ndarray
+    measured: np.ndarray
+    path: np.ndarray  # the smoothed position (the displacement drive / the context)
+    velocity: np.ndarray  # smoothed velocity
+    load: np.ndarray | None
+    force: np.ndarray | None
+    noise: float  # noise floor of ``measured`` in its units
+    position_noise: float
+    window: int  # savgol window (samples) used to smooth the path
+    min_excursion: float  # back-travel that counts as a significant reversal
+    v_rest: float  # |v| below this counts as presliding / sticking
+    windows: list = field(default_factory=list)  # position space: (start, end) sample ranges
+    notes: list = field(default_factory=list)
+    flipped: bool = False
+
+    @property
+    def unit(self) -> str:
+        return "force" if self.space == "friction" else "position"
+
+    def context(self) -> Context:
+        v = self.velocity
+        return Context(time=self.time, position=self.path, velocity=v, load=self.load,
+                       reversals=significant_reversals(self.path, self.min_excursion))
+
+
+def _mad_sd(a: np.ndarray) -> float:
+    a = a[np.isfinite(a)]
+    if not len(a):
+        return 0.0
+    return float(1.4826 * np.median(np.abs(a - np.median(a))))
+
+
+def position_noise(x: np.ndarray) -> tuple[float, float]:
+    """(noise sd, quantisation step) of a measured position: the larger of the step's
+    uniform-noise sd (q/√12, q the smallest common non-zero increment) and the white-noise sd
+    from second differences (sd·√6 for white noise on a smooth motion)."""
+    dx = np.abs(np.diff(x))
+    nz = dx[dx > 1e-9 * max(float(np.ptp(x)), 1e-300)]  # not the rounding of a unit conversion
+    q = 0.0
+    if len(nz):
+        q = float(np.min(nz))
+        # a lattice: most increments are multiples of q
+        if np.median(np.abs(nz / q - np.round(nz / q))) > 0.05:
+            q = 0.0
+    white = _mad_sd(np.diff(x, 2)) / math.sqrt(6.0)
+    return max(q / math.sqrt(12.0), white), q
+
+
+def smoothing_window(x: np.ndarray, dt: float, sd: float) -> int:
+    """Odd savgol window (≥ 5) over which the typical motion travels about three noise sds:
+    shorter windows leave the noise (or the encoder staircase) in the path, longer ones blur
+    reversals."""
+    v = np.abs(np.diff(x)) / dt
+    moving = v[v > 10 * sd / dt] if sd > 0 else v[v > 0]
+    if not len(moving) or sd <= 0:
+        return 5
+    v_typ = float(np.percentile(moving, 25))
+    w = int(math.ceil(3.0 * sd / (v_typ * dt)))
+    w = min(max(w, 5), max(5, len(x) // 50), 101)
+    return w + 1 - w % 2
+
+
+def play(x: np.ndarray, h: float) -> np.ndarray:
+    """The play (backlash) operator of half-width h: the output follows x only once x has
+    moved h past it, so back-and-forth wiggles smaller than 2h — what smoothing leaves of
+    noise and of the encoder staircase — do not reach the model as velocity reversals (each
+    would restart a transition curve on its steep initial part)."""
+    if h <= 0:
+        return x.copy()
+    out = np.empty_like(x)
+    y = float(x[0])
+    for i, xi in enumerate(x.tolist()):
+        if xi - h > y:
+            y = xi - h
+        elif xi + h < y:
+            y = xi + h
+        out[i] = y
+    return out
+
+
+def comparison_of(rec: Recording, params: FrictionParams) -> Comparison:
+    if rec.position is None:
+        raise DataError(f"{rec.source}: diagnosis needs a position column")
+    t = np.asarray(rec.time, dtype=np.float64)
+    x = np.asarray(rec.position, dtype=np.float64)
+    if len(t) < 50:
+        raise DataError(f"{rec.source}: diagnosis needs at least 50 samples, got {len(t)}")
+    dt = float(np.median(np.diff(t)))
+    sdx, q = position_noise(x)
+    w = smoothing_window(x, dt, sdx)
+    h = 2.0 * max(sdx, q / 2.0)
+    path = play(savgol_filter(x, w, 2, mode="interp"), h)
+    vel = savgol_filter(x, w, 2, deriv=1, delta=dt, mode="interp")
+    v_noise = sdx * math.sqrt(12.0) / (w**1.5 * dt)
+    v_rest = 3.0 * max(v_noise, (q / (w * dt)) if q else 0.0)
+    notes = [f"position noise {sdx:.3g} (step {q:.3g}); path smoothed over {w} samples and wiggles below {2 * h:.3g} removed; |v| < {v_rest:.3g} counts as presliding"]
+    min_exc = 4.0 * max(sdx, q)
+    if rec.friction is not None:
+        meas = np.asarray(rec.friction, dtype=np.float64)
+        noise = _mad_sd(np.diff(meas)) / math.sqrt(2.0)
+        cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, rec.force, noise, sdx, w, min_exc, v_rest,
+                          notes=notes)
+        # a reaction-sign log (friction positive while the position decreases): flip it
+        F0 = simulate_displacement(params, t, path).friction_force
+        if np.dot(F0 - F0.mean(), meas - meas.mean()) < 0:
+            cmp_.measured = -meas
+            cmp_.flipped = True
+            notes.append("friction logged as a reaction (opposite to the model's sign): flipped")
+        notes.append(f"compared in friction; noise floor {noise:.3g} (from sample-to-sample differences)")
+        return cmp_
+    if rec.force is None:
+        raise DataError(f"{rec.source}: diagnosis needs a friction column, or an applied force column")
+    f = np.asarray(rec.force, dtype=np.float64)
+    if rec.velocity is not None:
+        vt = np.asarray(rec.velocity, dtype=np.float64)
+        # use the tachometer where it is quieter than the differentiated position
+        if _mad_sd(np.diff(vt)) / math.sqrt(2) < v_noise:
+            vel = vt
+            notes.append("initial velocities from the velocity column (quieter than the smoothed position)")
+    inertia = params.inertia
+    c = 0.5 * (params.stribeck.positive.sigma2 + params.stribeck.negative.sigma2)
+    tau_v = inertia / c if c > 0 else (t[-1] - t[0]) / 100
+    # short windows: the open-loop plant must not run away from the measured motion (the
+    # Stribeck branch is unstable), yet move far enough for the friction to show
+    nwin = int(min(max(round(0.5 * tau_v / dt), 10), max(10, len(t) // 20)))
+    starts = list(range(0, len(t) - 1, nwin))
+    windows = [(a, min(a + nwin + 1, len(t))) for a in starts]
+    windows = [wd for wd in windows if wd[1] - wd[0] >= 3]
+    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
+    T = nwin * dt
+    floor = math.sqrt(sdx**2 + (f_sd / inertia) ** 2 * dt * T**3 / 3.0 + (v_noise * T) ** 2 / 3.0)
+    notes.append(f"compared in position: the plant simulated from the applied force in windows of {nwin} samples "
+                 f"({T:.3g} s ≈ I/σ2 / 2), memory carried over; noise floor {floor:.3g}")
+    return Comparison("position", t, x, path, vel, rec.normal_load, f, floor, sdx, w, min_exc, v_rest, windows=windows,
+                      notes=notes)
+
+
+# ---------------------------------------------------------------- the model being fitted
+@dataclass(frozen=True)
+class Term:
+    """One effect in a fit: which parameters are free (and how they are transformed)."""
+
+    name: str
+    fixed: dict
+    free: tuple  # (param name, transform "lin"|"log", lo, hi) in transformed coordinates
+
+
+def _terms_for(name: str, cmp_: Comparison) -> Term:
+    t = cmp_.time
+    T = float(t[-1] - t[0])
+    dt = float(np.median(np.diff(t)))
+    if name == "time_drift":
+        return Term(name, {"t0": float(t[0])}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(20 * dt), math.log(20 * T))))
+    if name == "normal_load":
+        n = cmp_.load
+        moving = np.abs(cmp_.velocity) > cmp_.v_rest
+        ref = float(np.median(n[moving])) if moving.any() else float(np.median(n))
+        return Term(name, {"N0": ref if ref > 0 else float(np.max(n))}, (("alpha", "lin", 0.0, 3.0),))
+    if name == "position_ripple":
+        span = float(np.ptp(cmp_.path))
+        return Term(name, {}, (("cs", "lin", -0.9, 0.9), ("cc", "lin", -0.9, 0.9),
+                               ("wavelength", "log", math.log(span / 2000), math.log(span / 2))))
+    if name == "cyclic_softening":
+        nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1])
+        return Term(name, {"min_excursion": cmp_.min_excursion},
+                    (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(0.3), math.log(max(10 * nrev, 1.0)))))
+    if name == "presliding_stiffness":
+        return Term(name, {}, (("kappa", "log", math.log(0.05), math.log(20.0)),))
+    raise KeyError(name)
+
+
+def _entry(term: Term, u: np.ndarray) -> dict:
+    vals = dict(term.fixed)
+    for (pname, tr, _, _), ui in zip(term.free, u):
+        vals[pname] = float(math.exp(ui)) if tr == "log" else float(ui)
+    if term.name == "position_ripple":
+        cs, cc = vals.pop("cs"), vals.pop("cc")
+        vals["a"] = float(min(math.hypot(cs, cc), 0.95))
+        vals["phase"] = float(math.atan2(cc, cs))
+    return {"name": term.name, "params": vals}
+
+
+def _entry_to_u(term: Term, params: dict) -> np.ndarray:
+    vals = dict(params)
+    if term.name == "position_ripple":
+        vals["cs"] = vals["a"] * math.cos(vals["phase"])
+        vals["cc"] = vals["a"] * math.sin(vals["phase"])
+    out = []
+    for pname, tr, lo, hi in term.free:
+        u = math.log(vals[pname]) if tr == "log" else float(vals[pname])
+        out.append(min(max(u, lo), hi))
+    return np.array(out)
+
+
+class Engine:
+    """Predicts the compared signal for the base parameters, a level g, a stiffness κ0 and
+    a list of effect entries, through ``model.effects``' factors and the simulator's scale
+    arrays. Caches the stiffness-dependent simulation in friction space (a friction factor
+    multiplies the output exactly there)."""
+
+    def __init__(self, params: FrictionParams, cmp_: Comparison):
+        self.p = params.replace(effects=())
+        self.c = cmp_
+        self.ctx = cmp_.context()
+        self._cache_key = None
+        self._cache = None
+        self.sims = 0
+
+    def set_base(self, params: FrictionParams) -> None:
+        self.p = params.replace(effects=())
+        self._cache_key = None
+
+    def scales(self, g: float, k0: float, entries) -> tuple[np.ndarray, np.ndarray | None]:
+        fs, ss = effect_scales(entries, self.ctx)
+        fs = np.full(len(self.c.time), g) if fs is None else g * fs
+        ss = None if (ss is None and k0 == 1.0) else (np.full(len(self.c.time), k0) if ss is None else k0 * ss)
+        return fs, ss
+
+    def predict(self, g: float, k0: float, entries) -> np.ndarray:
+        fs, ss = self.scales(g, k0, entries)
+        c = self.c
+        if c.space == "friction":
+            key = (k0, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
+                             if EFFECTS[e["name"]].acts_on == "stiffness"))
+            if key != self._cache_key:
+                self._cache = simulate_displacement(self.p, c.time, c.path, stiffness_scale=ss).friction_force
+                self._cache_key = key
+                self.sims += 1
+            return fs * self._cache
+        return self._windows(fs, ss)
+
+    def _windows(self, fs, ss) -> np.ndarray:
+        c = self.c
+        out = np.empty(len(c.time))
+        from ..model.simulate import initial_state
+
+        st = initial_state(self.p)
+        for a, b in c.windows:
+            v0 = float(c.velocity[a])
+            if abs(v0) < c.v_rest:
+                v0 = 0.0
+            r = simulate_force(self.p, c.time[a:b], c.force[a:b], x0=float(c.path[a]), v0=v0, state=st,
+                               friction_scale=fs[a:b], stiffness_scale=None if ss is None else ss[a:b])
+            out[a:b] = r.position
+        self.sims += 1
+        return out
 
 
 @dataclass
-class Diagnosis:
-    effect: str | None
-    description: str | None
-    effect_params: dict | None
-    rms_before: float
-    rms_after: float
-    regimes: dict  # regime -> {"n", "rms_before", "rms_after"}
-    candidates: list  # ranked dicts: name, rms_after, reduction, delta_bic, params, significant
-    params_before: FrictionParams
-    params_after: FrictionParams
-    time: np.ndarray = field(repr=False, default=None)
-    measured: np.ndarray = field(repr=False, default=None)
-    model_before: np.ndarray = field(repr=False, default=None)
-    model_after: np.ndarray = field(repr=False, default=None)
-    explaining: dict = field(repr=False, default_factory=dict)  # name -> (label, values)
-    rms_base_refit: float | None = None  # the current model with only S(v) refitted
+class FitResult:
+    g: float
+    k0: float
+    entries: list
+    pred: np.ndarray
+    rss: float
+    u: np.ndarray
 
-    def summary(self) -> dict:
-        return {
-            "effect": self.effect,
-            "description": self.description,
-            "effect_params": self.effect_params,
-            "rms_before": self.rms_before,
-            "rms_after": self.rms_after,
-            "rms_base_refit": self.rms_base_refit,
-            "regimes": self.regimes,
-            "candidates": self.candidates,
-        }
 
-    def text(self) -> str:
-        u = self.params_before.units.get("force", "")
-        lines = []
-        if self.effect:
-            lines.append(f"Missing effect: {self.effect} — {self.description}.")
-            lines.append("  parameters: " + ", ".join(f"{k} = {v:.4g}" for k, v in self.effect_params.items()))
+def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k0: bool, k0: float,
+         max_nfev: int = 60) -> FitResult:
+    """Least squares over log g, (log κ0), and every term's free parameters, on ``mask``."""
+    meas = engine.c.measured
+    lo, hi = [-math.log(5.0)], [math.log(5.0)]
+    if fit_k0:
+        lo.append(-math.log(20.0))
+        hi.append(math.log(20.0))
+    for term in terms:
+        for _, _, a, b in term.free:
+            lo.append(a)
+            hi.append(b)
+    lo, hi = np.array(lo), np.array(hi)
+    u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
+
+    def unpack(u):
+        g = math.exp(u[0])
+        i = 1
+        kk = k0
+        if fit_k0:
+            kk = math.exp(u[1])
+            i = 2
+        entries = []
+        for term in terms:
+            m = len(term.free)
+            entries.append(_entry(term, u[i:i + m]))
+            i += m
+        return g, kk, entries
+
+    def resid(u):
+        g, kk, entries = unpack(u)
+        return (meas - engine.predict(g, kk, entries))[mask]
+
+    sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4, max_nfev=max_nfev)
+    g, kk, entries = unpack(sol.x)
+    pred = engine.predict(g, kk, entries)
+    return FitResult(g, kk, entries, pred, float(np.sum((meas - pred)[mask] ** 2)), sol.x)
+
+
+def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_u: np.ndarray,
+                     mask: np.ndarray) -> FrictionParams:
+    """Part of the alternative: the level g, the presliding stiffness κ0, the exponent n of
+    eq. (5) (how sharply presliding turns into sliding) and the micro-viscous σ1 of eq. (3),
+    refitted together by output error. Returns the parameters with n and σ1 updated (g and
+    κ0 are refitted again by the caller, with n and σ1 held)."""
+    if params.model != "leuven":
+        return params
+    meas = engine.c.measured
+    n0, s10 = float(params.n), float(max(params.sigma1, 1e-12))
+    nt = len(terms)
+
+    def unpack(u):
+        g, kk, ln, ls = math.exp(u[0]), math.exp(u[1]), u[2], u[3]
+        entries, i = [], 4
+        for term in terms:
+            m = len(term.free)
+            entries.append(_entry(term, u[i:i + m]))
+            i += m
+        return g, kk, params.replace(n=float(n0 * math.exp(ln)), sigma1=float(s10 * math.exp(ls))), entries
+
+    def resid(u):
+        g, kk, p, entries = unpack(u)
+        engine.set_base(p)
+        return (meas - engine.predict(g, kk, entries))[mask]
+
+    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(1.0 / n0), -math.log(100)],
+                         [f[2] for t in terms for f in t.free]])
+    hi = np.concatenate([[math.log(5), math.log(20), math.log(40.0 / n0), math.log(100)],
+                         [f[3] for t in terms for f in t.free]])
+    u0 = np.clip(np.concatenate([[0.0, 0.0, 0.0, 0.0], prior_u]), lo + 1e-9, hi - 1e-9)
+    sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3, max_nfev=40)
+    _, _, p, _ = unpack(sol.x)
+    engine.set_base(p)
+    return p
+
+
+# ---------------------------------------------------------------- screening a candidate's shape
+def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, count: int = 3) -> list:
+    """Wavelengths of the strongest peaks in the spectrum of the relative residual against
+    position (sliding samples, binned on a uniform position grid)."""
+    moving = np.abs(cmp_.velocity) > cmp_.v_rest
+    if cmp_.space == "friction":
+        ok = moving & (np.abs(base) > 0.2 * np.max(np.abs(base)))
+        y = resid[ok] / base[ok]
+        x = cmp_.path[ok]
+    else:
+        # position space: the window residual's slope per window tracks the friction error
+        y = np.gradient(np.gradient(resid)) * moving
+        x = cmp_.path
+        ok = moving
+        y = y[ok]
+        x = x[ok]
+    if len(x) < 64 or np.ptp(x) <= 0:
+        return []
+    nb = int(min(8192, max(256, len(x) // 4)))
+    edges = np.linspace(x.min(), x.max(), nb + 1)
+    idx = np.clip(np.searchsorted(edges, x) - 1, 0, nb - 1)
+    s = np.bincount(idx, y, nb)
+    c = np.bincount(idx, None, nb)
+    have = c > 0
+    prof = np.zeros(nb)
+    prof[have] = s[have] / c[have]
+    if have.sum() < 32:
+        return []
+    prof[have] -= prof[have].mean()
+    prof[~have] = 0.0
+    spec = np.abs(np.fft.rfft(prof * np.hanning(nb)))
+    dxb = (edges[1] - edges[0])
+    k = np.arange(len(spec))
+    valid = (k >= 3) & (k <= nb // 4)  # at least 3 periods over the range, 4 bins a period
+    out = []
+    sp = np.where(valid, spec, 0.0)
+    for _ in range(count):
+        i = int(np.argmax(sp))
+        if sp[i] <= 0:
+            break
+        # parabolic refinement of the peak
+        if 0 < i < len(spec) - 1:
+            a, b, cc = spec[i - 1], spec[i], spec[i + 1]
+            den = a - 2 * b + cc
+            di = 0.5 * (a - cc) / den if den != 0 else 0.0
         else:
-            lines.append("No significant missing effect: the base model explains the data to within its noise.")
-        lines.append(f"RMS gap: {self.rms_before:.4g} {u} before, {self.rms_after:.4g} {u} after "
-                     f"({100 * (1 - self.rms_after / self.rms_before):.1f} % smaller)")
-        if self.rms_base_refit is not None:
-            lines.append(f"(refitting S(v) alone, without an effect, gives {self.rms_base_refit:.4g} {u})")
-        lines.append("Per regime (RMS before → after):")
-        for k, r in self.regimes.items():
-            lines.append(f"  {k:28s} n={r['n']:7d}  {r['rms_before']:.4g} → {r['rms_after']:.4g}")
-        lines.append("Candidates (best first):")
-        for c in self.candidates:
-            mark = "*" if c["significant"] else " "
-            how = "refitted" if c["refitted"] else "screened"
-            lines.append(f" {mark} {c['name']:22s} RMS -{100 * c['reduction']:5.1f} %   ΔBIC {c['delta_bic']:10.1f}  ({how})")
-        return "\n".join(lines)
+            di = 0.0
+        out.append(nb * dxb / (i + di))
+        sp[max(i - 2, 0):i + 3] = 0.0
+    return out
 
 
-def friction_signal(rec: Recording, params: FrictionParams) -> np.ndarray:
-    """The measured friction, or the applied force minus I·ẍ (eq. (8)) when only that exists."""
-    if rec.friction is not None:
-        return rec.friction
-    if rec.force is None or rec.position is None:
-        raise DataError(f"{rec.source}: diagnosis needs a friction column, or applied force and position")
-    v = velocity_of(rec)
-    a = np.zeros_like(v)
-    a[1:] = np.diff(v) / np.diff(rec.time)
-    return rec.force - params.inertia * a
+def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, base: np.ndarray) -> list:
+    """Starting values (transformed) for the shape parameter, before amplitudes are solved."""
+    T = float(cmp_.time[-1] - cmp_.time[0])
+    if name == "time_drift":
+        return [("tau", math.log(v)) for v in T * np.geomspace(0.03, 3.0, 7)]
+    if name == "cyclic_softening":
+        nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1]) or 1.0
+        return [("n_c", math.log(v)) for v in nrev * np.geomspace(0.02, 2.0, 5)]
+    if name == "position_ripple":
+        return [("wavelength", math.log(v)) for v in _ripple_wavelengths(cmp_, resid, base)]
+    return [(None, None)]
 
 
-def simulate_signals(params: FrictionParams, rec: Recording) -> Signals:
-    """The model's signals along the recorded motion (with a stored direction asymmetry, the
-    positive increments of the path rescaled, see ``model.effects.direction_scaled_path``)."""
-    if rec.position is None:
-        raise DataError(f"{rec.source}: diagnosis needs a position column")
-    x = rec.position
-    for eff in params.effects:
-        if eff.get("name") == "sign_asymmetry":
-            x = direction_scaled_path(x, eff["params"]["c_up"])
-    r = simulate_displacement(params, rec.time, x)
-    fd = transition_curve_values(params, r.z) if params.model == "leuven" else r.hysteresis_force
-    return Signals(time=rec.time, position=rec.position, velocity=r.velocity, friction=r.friction_force,
-                   transition=fd, reversals=reversal_count(r.velocity), load=rec.normal_load)
+def _amplitude_names(name):
+    return {"time_drift": ("b",), "cyclic_softening": ("h",), "position_ripple": ("cs", "cc"), "normal_load": ("alpha",),
+            "presliding_stiffness": ("kappa",)}[name]
 
 
-def regime_masks(s: Signals) -> dict:
-    v = s.velocity
-    masks = {"all": np.ones(len(v), bool), "presliding": np.abs(v) < V_SLIDE, "sliding, v > 0": v >= V_SLIDE,
-             "sliding, v < 0": v <= -V_SLIDE}
-    rev_idx = np.flatnonzero(np.diff(s.reversals) > 0) + 1
-    near = np.zeros(len(v), bool)
-    for i in rev_idx:
-        near[i : np.searchsorted(s.time, s.time[i] + NEAR_REVERSAL_S)] = True
-    masks["within 0.1 s of a reversal"] = near
-    for label, values in (("position", s.position), ("time", s.time), ("reversals", s.reversals),
-                          ("load", s.load)):
-        if values is None or np.ptp(values) == 0:
-            continue
-        edges = np.unique(np.quantile(values, np.linspace(0, 1, 5)))
-        for a, b in zip(edges[:-1], edges[1:]):
-            masks[f"{label} {a:.3g}…{b:.3g}"] = (values >= a) & (values <= b)
-    return masks
+def screen(engine: Engine, name: str, term: Term, prior: list, prior_u: np.ndarray, base_fit: FitResult,
+           mask: np.ndarray) -> np.ndarray | None:
+    """The best start for a candidate: for each shape value, the amplitudes by one secant
+    (Gauss-Newton) step from zero effect. Returns the full u vector for ``_fit``."""
+    meas = engine.c.measured
+    r0 = (meas - base_fit.pred)[mask]
+    best = None
+    amps = _amplitude_names(name)
+    neutral = {"b": 0.0, "h": 0.0, "cs": 0.0, "cc": 0.0, "alpha": 0.0, "kappa": 0.0}
+    deltas = {"b": 0.1, "h": -0.2, "cs": 0.05, "cc": 0.05, "alpha": 0.5, "kappa": 0.2}
+    free_names = [f[0] for f in term.free]
+    for shape_name, shape_val in _screen_starts(name, term, engine.c, meas - base_fit.pred, base_fit.pred):
+        u = np.array([neutral.get(n, 0.0) for n in free_names])
+        if shape_name is not None:
+            u[free_names.index(shape_name)] = shape_val
+        cols = []
+        for a in amps:
+            ua = u.copy()
+            ua[free_names.index(a)] = deltas[a]
+            pa = engine.predict(base_fit.g, base_fit.k0, prior + [_entry(term, ua)])
+            cols.append(((pa - base_fit.pred)[mask]) / deltas[a])
+        J = np.column_stack(cols)
+        coef, *_ = np.linalg.lstsq(J, r0, rcond=None)
+        for a, cf in zip(amps, coef):
+            lo, hi = next((f[2], f[3]) for f in term.free if f[0] == a)
+            u[free_names.index(a)] = float(np.clip(cf, lo, hi))
+        rss = float(np.sum((r0 - J @ coef) ** 2))
+        if best is None or rss < best[0]:
+            best = (rss, u)
+    if best is None:
+        return None
+    head = [math.log(base_fit.g)]
+    return np.concatenate([head, prior_u, best[1]])
 
 
-def _rms(a):
-    return float(np.sqrt(np.mean(a**2))) if len(a) else float("nan")
+# ---------------------------------------------------------------- cross-validation
+def fold_masks(n: int, folds: int, blocks_per_fold: int, windows=None) -> list:
+    """Held-out masks: ``folds·blocks_per_fold`` contiguous blocks dealt round-robin (in
+    position space, whole windows are kept together)."""
+    nb = folds * blocks_per_fold
+    block = np.minimum((np.arange(n) * nb) // max(n, 1), nb - 1)
+    if windows:
+        for a, b in windows:
+            block[a:b] = block[a]
+    fold = block % folds
+    return [fold == k for k in range(folds)]
+
+
+@dataclass
+class Evidence:
+    name: str
+    params: dict
+    rms_in: float  # in-sample RMS with the candidate
+    heldout_sse: np.ndarray  # per fold
+    null_sse: np.ndarray
+    informative: np.ndarray  # per fold: the candidate changes the held-out prediction
+    delta_bic: float
+    correction: np.ndarray = field(repr=False, default=None)  # prediction − alternative's prediction
+    fit: FitResult = field(repr=False, default=None)
+
+    @property
+    def folds_improved(self) -> int:
+        return int(np.sum((self.heldout_sse < self.null_sse) & self.informative))
+
+    @property
+    def folds_informative(self) -> int:
+        return int(np.sum(self.informative))
+
+    @property
+    def heldout_gain(self) -> float:
+        return float(1.0 - math.sqrt(np.sum(self.heldout_sse) / max(np.sum(self.null_sse), 1e-300)))
+
+    def passes(self, s: Settings) -> bool:
+        k = self.folds_informative
+        return bool(k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain)
+
+    def as_dict(self, s: Settings, base_rms: float) -> dict:
+        return {"name": self.name, "description": EFFECTS[self.name].description, "params": self.params,
+                "rms_after": self.rms_in, "reduction": float(1 - self.rms_in / base_rms) if base_rms else 0.0,
+                "heldout_gain": self.heldout_gain, "folds_improved": self.folds_improved,
+                "folds_informative": self.folds_informative, "delta_bic": self.delta_bic, "passes": self.passes(s),
+                "significant": False, "refitted": True}
 
 
 def _effective_n(resid: np.ndarray) -> float:
@@ -145,197 +558,304 @@ def _effective_n(resid: np.ndarray) -> float:
     return len(r) * (1 - rho) / (1 + rho)
 
 
-def _linear_fit(B, resid):
-    coef, *_ = np.linalg.lstsq(B, resid, rcond=None)
-    return coef, resid - B @ coef
+def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list, k0: float) -> tuple:
+    """Held-out SSE per fold, and the held-out predictions, refitting on the other folds."""
+    meas = engine.c.measured
+    sse = np.zeros(len(masks))
+    preds = []
+    for i, held in enumerate(masks):
+        fr = _fit(engine, terms, u_full, ~held, fit_k0=False, k0=k0, max_nfev=25)
+        sse[i] = float(np.sum((meas - fr.pred)[held] ** 2))
+        preds.append(fr.pred)
+    return sse, preds
 
 
-def _scan(fn, grid):
-    """Best of ``fn(shape) -> rss`` over a log grid, then refined between the neighbours."""
-    vals = [fn(g) for g in grid]
-    i = int(np.argmin(vals))
-    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
-    if hi > lo:
-        r = minimize_scalar(lambda lg: fn(np.exp(lg)), bounds=(np.log(lo), np.log(hi)), method="bounded",
-                            options={"xatol": 1e-3})
-        if r.fun < vals[i]:
-            return float(np.exp(r.x))
-    return float(grid[i])
+# ---------------------------------------------------------------- the result
+@dataclass
+class Diagnosis:
+    effects: list  # names of the effects named, in order
+    steps: list  # per step: {name, params, rms, regimes, evidence}
+    confounded: list  # [{effects: [a, b], evidence: {...}, experiment: str}]
+    candidates: list  # the last round's candidates (dicts)
+    rms_before: float
+    rms_after: float
+    rms_base_refit: float
+    regimes: dict
+    space: str
+    noise: float
+    notes: list
+    params_before: FrictionParams
+    params_after: FrictionParams
+    settings: Settings = field(default_factory=Settings)
+    time: np.ndarray = field(repr=False, default=None)
+    measured: np.ndarray = field(repr=False, default=None)
+    model_before: np.ndarray = field(repr=False, default=None)
+    model_after: np.ndarray = field(repr=False, default=None)
+    step_predictions: list = field(repr=False, default_factory=list)
+    explaining: dict = field(repr=False, default_factory=dict)
 
+    # the first named effect, for callers that show one
+    @property
+    def effect(self) -> str | None:
+        return self.effects[0] if self.effects else None
 
-RESIMULATED = {
-    # presliding effects that change what is simulated, with their one parameter
-    "presliding_stiffness": lambda p, rec, c: simulate_displacement(stiffness_scaled(p, c), rec.time,
-                                                                     rec.position).friction_force,
-    "sign_asymmetry": lambda p, rec, c: simulate_displacement(p, rec.time,
-                                                              direction_scaled_path(rec.position, c)).friction_force,
-}
+    @property
+    def description(self) -> str | None:
+        return EFFECTS[self.effect].description if self.effect else None
 
+    @property
+    def effect_params(self) -> dict | None:
+        return self.steps[1]["params"] if self.effects else None
 
-def fit_candidate(name: str, s: Signals, resid: np.ndarray, params: FrictionParams, rec: Recording,
-                  measured: np.ndarray) -> dict | None:
-    """Fit one candidate; returns its parameters, new residual and number of parameters."""
-    if name in RESIMULATED:
-        def predict(c):
-            return RESIMULATED[name](params, rec, c)
+    def summary(self) -> dict:
+        return {
+            "effects": list(self.effects), "effect": self.effect, "effect_params": self.effect_params,
+            "space": self.space, "noise": self.noise, "rms_before": self.rms_before, "rms_after": self.rms_after,
+            "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
+            "confounded": self.confounded, "candidates": self.candidates, "notes": list(self.notes),
+            "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
+                         "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr},
+        }
 
-        c = _scan(lambda c: float(np.sum((measured - predict(c)) ** 2)), np.exp(np.linspace(np.log(0.25), np.log(4.0), 9)))
-        return {"params": {EFFECTS[name][2][0]: c}, "resid": measured - predict(c), "k": 1}
-    shape_name = SHAPE.get(name)
-    if shape_name is None:
-        B = basis(name, s)
-        if B is None:
-            return None
-        coef, new = _linear_fit(B, resid)
-        return {"params": dict(zip(EFFECTS[name][2], map(float, coef))), "resid": new, "k": B.shape[1]}
-    if name == "position_periodic":
-        span = float(np.ptp(s.position)) or 1.0
-        grid = np.exp(np.linspace(np.log(span / 200), np.log(span), 40))
-    else:  # frictional_lag time constant
-        grid = np.exp(np.linspace(np.log(1e-3), np.log(2.0), 16))
-    shape = _scan(lambda g: float(np.sum(_linear_fit(basis(name, s, g), resid)[1] ** 2)), grid)
-    B = basis(name, s, shape)
-    coef, new = _linear_fit(B, resid)
-    out = dict(zip(EFFECTS[name][2], map(float, coef)))
-    out[shape_name] = shape
-    return {"params": out, "resid": new, "k": B.shape[1] + 1}
-
-
-def _with_stribeck(params: FrictionParams, theta: np.ndarray) -> FrictionParams:
-    return params.replace(stribeck=Stribeck(StribeckSide(*map(float, theta[:5])), StribeckSide(*map(float, theta[5:]))))
-
-
-def output_error_refit(params: FrictionParams, rec: Recording, measured: np.ndarray, name: str | None = None,
-                       fit: dict | None = None, max_nfev: int = 6) -> dict:
-    """The model refitted by simulation to every sample: S(v) of both signs (10 values), and
-    the candidate effect's parameters — its linear coefficients solved at every step
-    (variable projection) with its shape parameter held, or its one parameter when the effect
-    changes the simulation. Returns params, effect parameters and the residual."""
-    theta0 = params.stribeck.as_array()
-    resim = name in RESIMULATED
-    key = EFFECTS[name][2][0] if resim else None
-    u0 = np.zeros(10 + (1 if resim else 0))
-    shape_name = SHAPE.get(name) if name else None
-    shape = fit["params"].get(shape_name) if (fit and shape_name) else None
-    c_resim = fit["params"][key] if resim else None
-    state = {}
-
-    def residual(u):
-        # θ = θ0·exp(u): every S(v) value keeps its sign (Table I convention)
-        p = _with_stribeck(params, theta0 * np.exp(u[:10]))
-        if resim:
-            r = measured - RESIMULATED[name](p, rec, c_resim * np.exp(u[10]))
-            coef = None
+    def text(self) -> str:
+        u = self.params_before.units.get("force" if self.space == "friction" else "position", "")
+        L = []
+        if self.effects:
+            L.append("Missing effects named (out-of-sample evidence): " + ", ".join(self.effects))
         else:
-            s = simulate_signals(p, rec)
-            r = measured - s.friction
-            coef = None
-            if name is not None:
-                B = basis(name, s, shape)
-                coef, r = _linear_fit(B, r)
-        state[u.tobytes()] = (p, coef)
-        return r
+            L.append("No missing effect named: nothing improves the held-out prediction in most folds.")
+        for c in self.confounded:
+            a, b = c["effects"]
+            L.append(f"Confounded: {a} and {b} explain the same part of the residual "
+                     f"(correlation {c['correlation']:.2f}; held-out gain {100 * c['gains'][0]:.1f} % vs "
+                     f"{100 * c['gains'][1]:.1f} %). Neither is named. To separate them: {c['experiment']}.")
+        L.append(f"Compared in {self.space}; noise floor {self.noise:.4g} {u}.")
+        for n in self.notes:
+            L.append(f"  {n}")
+        L.append(f"RMS gap, step by step ({u}):")
+        for s in self.steps:
+            L.append(f"  {s['label']:40s} {s['rms']:.4g}  ({s['rms'] / self.noise:.2f} × noise)" if self.noise > 0
+                     else f"  {s['label']:40s} {s['rms']:.4g}")
+            if s.get("params"):
+                L.append("      " + ", ".join(f"{k} = {v:.4g}" for k, v in s["params"].items()))
+        L.append("Per regime (RMS before → after the refit → final):")
+        for k, r in self.regimes.items():
+            L.append(f"  {k:22s} n={r['n']:7d}  {r['rms_before']:.4g} → {r['rms_base_refit']:.4g} → {r['rms_after']:.4g}")
+        L.append(f"Candidates, last round (blocked CV: {self.settings.folds} folds of "
+                 f"{self.settings.blocks_per_fold} contiguous blocks; named if better held out in most informative "
+                 f"folds and ≥ {100 * self.settings.min_gain:.0f} % pooled):")
+        for c in self.candidates:
+            mark = "*" if c["significant"] else ("+" if c["passes"] else " ")
+            L.append(f" {mark} {c['name']:20s} held-out RMS −{100 * c['heldout_gain']:6.1f} %  folds "
+                     f"{c['folds_improved']}/{c['folds_informative']}  in-sample −{100 * c['reduction']:5.1f} %  "
+                     f"ΔBIC {c['delta_bic']:10.1f}")
+        return "\n".join(L)
 
-    # a refit, not a new identification: each S(v) value stays within a factor 3 of where it
-    # started (unbounded, S(v) drifts into shapes that fit one recording and mean nothing)
-    bound = np.full(len(u0), np.log(3.0))
-    if resim:
-        bound[10] = np.log(20.0)
-    sol = least_squares(residual, u0, bounds=(-bound, bound), method="trf", diff_step=1e-4, max_nfev=max_nfev,
-                        x_scale=1.0)
-    r = residual(sol.x)
-    p, coef = state[sol.x.tobytes()]
-    eff = None
-    if resim:
-        eff = {key: float(c_resim * np.exp(sol.x[10]))}
-    elif name is not None:
-        eff = dict(zip(EFFECTS[name][2], map(float, coef)))
-        if shape_name:
-            eff[shape_name] = float(shape)
-    k = (1 if resim else (len(EFFECTS[name][2]) + (1 if shape_name else 0))) if name else 0
-    return {"params": eff, "base": p, "resid": r, "k": k}
+
+def regime_masks(cmp_: Comparison) -> dict:
+    v = cmp_.velocity
+    m = {"all": np.ones(len(v), bool), "presliding": np.abs(v) <= cmp_.v_rest, "sliding, v > 0": v > cmp_.v_rest,
+         "sliding, v < 0": v < -cmp_.v_rest}
+    if cmp_.load is not None and np.ptp(cmp_.load) > 0:
+        dn = np.abs(np.gradient(cmp_.load))
+        m["load changing"] = dn > 5 * (_mad_sd(np.diff(cmp_.load)) + 1e-300)
+    return m
 
 
-def diagnose(rec: Recording, params: FrictionParams, *, progress=None, leading: int = 3) -> Diagnosis:
-    """Run the workflow on one recording with the current model ``params``."""
-    say = progress or (lambda frac, msg: None)
-    measured = friction_signal(rec, params)
-    say(0.02, "simulating the current model on the recorded motion")
-    s_cur = simulate_signals(params, rec)
-    resid_cur = measured - s_cur.friction
-    rms0 = _rms(resid_cur)
-    # the alternative every effect must beat: the same model with S(v) refitted to all samples
-    say(0.05, "refitting S(v) to every sample (output error)")
-    base = output_error_refit(params, rec, measured)
-    s = simulate_signals(base["base"], rec)
-    resid = measured - s.friction
-    rss_base = float(np.sum(resid**2))
-    names = [n for n in EFFECTS if not (n == "normal_load" and rec.normal_load is None)]
-    screened = []
-    for i, name in enumerate(names):
-        say(0.15 + 0.35 * i / len(names), f"screening {name}")
-        fit = fit_candidate(name, s, resid, base["base"], rec, measured)
-        if fit is not None:
-            screened.append((float(np.sum(fit["resid"] ** 2)), name, fit))
-    screened.sort(key=lambda x: x[0])
-    cands = []
-    for j, (rss_screen, name, fit) in enumerate(screened):
-        if j < leading:
-            say(0.5 + 0.4 * j / leading, f"refitting the model with {name}")
-            fit = output_error_refit(base["base"], rec, measured, name, fit)
-        else:
-            fit["base"] = base["base"]
-        rss1 = float(np.sum(fit["resid"] ** 2))
-        n_eff = _effective_n(fit["resid"])
-        dbic = n_eff * np.log(max(rss1, 1e-300) / rss_base) + fit["k"] * np.log(n_eff)
-        reduction = 1.0 - np.sqrt(rss1 / rss_base)
-        cands.append({"name": name, "description": EFFECTS[name][0], "params": fit["params"],
-                      "rms_after": _rms(fit["resid"]), "reduction": float(reduction), "delta_bic": float(dbic),
-                      "refitted": j < leading,
-                      "significant": bool(j < leading and dbic < BIC_THRESHOLD and reduction >= MIN_REDUCTION),
-                      "_resid": fit["resid"], "_base": fit["base"]})
-    cands.sort(key=lambda c: (not c["refitted"], c["delta_bic"]))
-    winner = cands[0] if cands and cands[0]["significant"] else None
-    for c in cands[1:]:
-        c["significant"] = False  # one effect is named per run; run again to look for another
-    say(0.95, "reporting")
-    if winner is None:
-        after_resid, new_params, model_after = resid_cur, params, s_cur.friction
+def _rms(a) -> float:
+    return float(np.sqrt(np.mean(a**2))) if len(a) else float("nan")
+
+
+EXPLAINS = {"time_drift": "time", "normal_load": "load", "position_ripple": "position", "cyclic_softening": "reversals",
+            "presliding_stiffness": "velocity"}
+
+
+def bake(params: FrictionParams, g: float, k0: float) -> FrictionParams:
+    """The parameters with every force scaled by g and the presliding stiffness by κ0 —
+    exactly the model whose friction is g·F with F_d(κ0·z)."""
+    from ..model import Stribeck, StribeckSide
+
+    def side(s):
+        return StribeckSide(Fs=s.Fs * g, Fc=s.Fc * g, vs=s.vs, delta=s.delta, sigma2=s.sigma2 * g)
+
+    tc = params.transition_curve
+    if tc.kind == "piecewise_linear":
+        new_tc = TransitionCurve(kind=tc.kind, z=tuple(z / k0 for z in tc.z), F=tuple(f * g for f in tc.F))
     else:
-        after_resid = winner["_resid"]
-        model_after = measured - after_resid
-        fitted = winner["_base"]
-        entry = {"name": winner["name"], "params": winner["params"]}
-        if winner["name"] == "presliding_stiffness":
-            fitted = stiffness_scaled(fitted, winner["params"]["scale"])
-            entry["applied_to"] = "transition_curve"
-        elif winner["name"] == "sign_asymmetry":
-            entry["applied_to"] = "displacement path"
-        # S(v) was refitted by output error: the Markov standard deviations no longer apply
-        unc = {k: v for k, v in params.uncertainty.items() if not k.startswith("stribeck.")}
-        prov = dict(params.provenance, diagnosis=f"{winner['name']} added; S(v) refitted by simulation")
-        new_params = fitted.replace(effects=tuple(params.effects) + (entry,), uncertainty=unc, provenance=prov)
+        sh = dict(tc.shape)
+        new_tc = TransitionCurve(kind=tc.kind, shape={"A": sh["A"] * g, "z0": sh["z0"] / k0, "k": sh["k"] * g * k0})
+    kw = dict(stribeck=Stribeck(side(params.stribeck.positive), side(params.stribeck.negative)), transition_curve=new_tc,
+              sigma1=params.sigma1 * g)
+    if params.sigma0 is not None:
+        kw["sigma0"] = params.sigma0 * g * k0
+    return params.replace(**kw)
+
+
+def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings: Settings | None = None) -> Diagnosis:
+    """Run the workflow on one recording with the current model ``params``."""
+    s = settings or Settings()
+    say = progress or (lambda frac, msg: None)
+    say(0.01, "choosing where to compare")
+    cmp_ = comparison_of(rec, params)
+    base_params = params.replace(effects=())
+    engine = Engine(base_params, cmp_)
+    meas = cmp_.measured
+    n = len(meas)
+    allm = np.ones(n, bool)
+    # the model as given, its own effects included
+    prior0 = [dict(e) for e in params.effects]
+    pred_given = engine.predict(1.0, 1.0, prior0)
+    rms0 = _rms(meas - pred_given)
+    say(0.05, "refitting the level and presliding stiffness (the alternative)")
+    prior_terms = []
+    prior_u = np.zeros(0)
+    for e in prior0:
+        if e["name"] in EFFECTS and e["name"] != "presliding_stiffness":
+            tm = _terms_for(e["name"], cmp_)
+            tm = Term(tm.name, {k: e["params"][k] for k in tm.fixed}, tm.free)
+            prior_terms.append(tm)
+            prior_u = np.concatenate([prior_u, _entry_to_u(tm, e["params"])])
+    base_params = refit_transition(engine, base_params, prior_terms, prior_u, allm)
+    null = _fit(engine, prior_terms, np.concatenate([[0.0, 0.0], prior_u]), allm, fit_k0=True, k0=1.0)
+    k0 = null.k0
+    masks = fold_masks(n, s.folds, s.blocks_per_fold, cmp_.windows)
+    regimes_m = regime_masks(cmp_)
+    steps = [{"label": "model as given", "name": None, "params": None, "rms": rms0},
+             {"label": f"level ×{null.g:.3f}, stiffness ×{k0:.3f} refitted", "name": None, "params": None,
+              "rms": _rms(meas - null.pred)}]
+    steps[1]["label"] = f"level ×{null.g:.3f}, stiffness ×{k0:.3f}, n {base_params.n:.3g}, σ1 {base_params.sigma1:.3g}"
+    step_preds = [pred_given, null.pred]
+    named = []
+    confounded = []
+    cur, cur_terms, cur_u = null, list(prior_terms), null.u[2:] if len(null.u) > 2 else np.zeros(0)
+    cands_out = []
+    excluded = set()
+    names = [c for c in s.candidates if c in EFFECTS and not (EFFECTS[c].needs and any(
+        getattr(cmp_.context(), nd) is None or (nd == "load" and np.ptp(cmp_.load) <= 0) for nd in EFFECTS[c].needs))]
+    names = [c for c in names if c not in {e["name"] for e in prior0}]
+    for step in range(s.max_effects):
+        say(0.1 + 0.8 * step / s.max_effects, f"step {step + 1}: cross-validating the alternative")
+        null_u = np.concatenate([[math.log(cur.g)], cur_u])
+        null_sse, null_preds = cross_validate(engine, cur_terms, null_u, masks, k0)
+        rss_null = cur.rss
+        evid = []
+        todo = [c for c in names if c not in named and c not in excluded]
+        for j, name in enumerate(todo):
+            say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
+            term = _terms_for(name, cmp_)
+            u0 = screen(engine, name, term, cur.entries, cur_u, cur, allm)
+            if u0 is None:
+                continue
+            terms = cur_terms + [term]
+            fr = _fit(engine, terms, u0, allm, fit_k0=False, k0=k0)
+            sse, preds = cross_validate(engine, terms, fr.u, masks, k0)
+            # a fold where the candidate hardly changes the held-out prediction says nothing
+            informative = np.array([np.sum((preds[i] - null_preds[i])[m] ** 2) > INFORMATIVE * max(null_sse[i], 1e-300)
+                                    for i, m in enumerate(masks)])
+            n_eff = _effective_n(meas - fr.pred)
+            dbic = n_eff * math.log(max(fr.rss, 1e-300) / max(rss_null, 1e-300)) + len(term.free) * math.log(n_eff)
+            evid.append(Evidence(name, fr.entries[-1]["params"], _rms(meas - fr.pred), sse, null_sse, informative, dbic,
+                                 fr.pred - cur.pred, fr))
+        passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
+        base_rms = _rms(meas - cur.pred)
+        cands_out = [e.as_dict(s, base_rms) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
+        winner = None
+        blocked = set()
+        for e in passing:
+            if e.name in blocked:
+                continue
+            rivals = []
+            for o in passing:
+                if o is e or o.name in blocked:
+                    continue
+                corr = _corr(e.correction, o.correction)
+                if corr < s.confound_corr:
+                    continue
+                clearly = (e.heldout_gain - o.heldout_gain >= s.clear_margin * e.heldout_gain
+                           and int(np.sum(e.heldout_sse < o.heldout_sse)) > len(masks) / 2)
+                if not clearly:
+                    rivals.append((o, corr))
+            if rivals:
+                for o, corr in rivals:
+                    confounded.append({"effects": [e.name, o.name], "correlation": float(corr),
+                                       "gains": [e.heldout_gain, o.heldout_gain],
+                                       "evidence": {e.name: e.as_dict(s, base_rms), o.name: o.as_dict(s, base_rms)},
+                                       "experiment": separating_experiment(e.name, o.name)})
+                    blocked.add(o.name)
+                blocked.add(e.name)
+                continue
+            winner = e
+            break
+        excluded |= blocked
+        if winner is None:
+            break
+        for c in cands_out:
+            c["significant"] = c["name"] == winner.name
+        named.append(winner.name)
+        cur_terms = cur_terms + [_terms_for(winner.name, cmp_)]
+        say(0.1 + 0.8 * (step + 1) / s.max_effects, f"adding {winner.name} and refitting everything together")
+        refit = _fit(engine, cur_terms, np.concatenate([[math.log(winner.fit.g)], winner.fit.u[1:]]), allm,
+                     fit_k0=False, k0=k0)
+        cur = refit
+        cur_u = refit.u[1:]
+        steps.append({"label": f"+ {winner.name}", "name": winner.name, "params": dict(refit.entries[-1]["params"]),
+                      "rms": _rms(meas - refit.pred), "heldout_gain": winner.heldout_gain,
+                      "folds": f"{winner.folds_improved}/{winner.folds_informative}"})
+        step_preds.append(refit.pred)
+    say(0.95, "reporting")
+    final = cur
     regimes = {}
-    for k, m in regime_masks(s_cur).items():
+    for k, m in regimes_m.items():
         if m.any():
-            regimes[k] = {"n": int(m.sum()), "rms_before": _rms(resid_cur[m]), "rms_after": _rms(after_resid[m])}
-    explaining = {"position": ("position", s.position), "time": ("time (s)", s.time),
-                  "velocity": ("velocity", s.velocity), "reversals": ("number of reversals", s.reversals)}
-    if s.load is not None:
-        explaining["load"] = ("normal load", s.load)
-    for c in cands:
-        c.pop("_resid")
-        c.pop("_base")
+            regimes[k] = {"n": int(m.sum()), "rms_before": _rms((meas - pred_given)[m]),
+                          "rms_base_refit": _rms((meas - null.pred)[m]), "rms_after": _rms((meas - final.pred)[m]),
+                          "noise": cmp_.noise}
+    if named or abs(null.g - 1) > 0 or k0 != 1.0:
+        unc = {k: v for k, v in params.uncertainty.items()
+               if not (k.startswith("stribeck.") or k.startswith("transition_curve"))} if named else dict(params.uncertainty)
+        prov = dict(params.provenance)
+        if named:
+            prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation); level ×{final.g:.4g} and "
+                                 f"presliding stiffness ×{k0:.4g} refitted by output error in {cmp_.space}")
+        new_params = bake(base_params, final.g, k0).replace(
+            effects=tuple(_clean_entry(e, cmp_) for e in final.entries), uncertainty=unc, provenance=prov)
+        if not named:
+            new_params = params  # nothing named: the model stays as it was
+    else:
+        new_params = params
+    ctx = cmp_.context()
+    explaining = {"time": ("time (s)", cmp_.time), "position": ("position", cmp_.path),
+                  "velocity": ("velocity", cmp_.velocity), "reversals": ("significant reversals", ctx.reversals)}
+    if cmp_.load is not None:
+        explaining["load"] = ("normal load", cmp_.load)
     say(1.0, "done")
-    return Diagnosis(
-        effect=winner["name"] if winner else None, description=winner["description"] if winner else None,
-        effect_params=winner["params"] if winner else None, rms_before=rms0, rms_after=_rms(after_resid),
-        regimes=regimes, candidates=cands, params_before=params, params_after=new_params, time=rec.time,
-        measured=measured, model_before=s_cur.friction, model_after=model_after, explaining=explaining,
-        rms_base_refit=_rms(resid),
-    )
+    return Diagnosis(effects=named, steps=steps, confounded=confounded, candidates=cands_out, rms_before=rms0,
+                     rms_after=_rms(meas - final.pred), rms_base_refit=_rms(meas - null.pred), regimes=regimes,
+                     space=cmp_.space, noise=cmp_.noise, notes=cmp_.notes, params_before=params,
+                     params_after=new_params, settings=s, time=cmp_.time, measured=meas, model_before=pred_given,
+                     model_after=final.pred, step_predictions=step_preds, explaining=explaining)
+
+
+def _clean_entry(e: dict, cmp_: Comparison) -> dict:
+    return {"name": e["name"], "params": {k: float(v) for k, v in e["params"].items()}}
+
+
+def _corr(a: np.ndarray, b: np.ndarray) -> float:
+    a = a - a.mean()
+    b = b - b.mean()
+    d = math.sqrt(float(np.dot(a, a)) * float(np.dot(b, b)))
+    return float(abs(np.dot(a, b)) / d) if d > 0 else 0.0
+
+
+def separating_experiment(a: str, b: str) -> str:
+    ea, eb = EFFECTS[a], EFFECTS[b]
+    return f"for {a}: {ea.separated_by}; for {b}: {eb.separated_by}"
 
 
 def model_with_effects(params: FrictionParams, rec: Recording) -> np.ndarray:
-    """The friction predicted by ``params`` including its stored output effects."""
-    return apply_effects(params.effects, simulate_signals(params, rec))
+    """The friction predicted by ``params`` with its effects along the recorded motion."""
+    from ..model.effects import predict
+
+    if rec.position is None:
+        raise DataError(f"{rec.source}: needs a position column")
+    return predict(params, "displacement", Signals(time=rec.time, position=rec.position, load=rec.normal_load)).friction_force

@@ -1,171 +1,333 @@
-"""Effects the base model does not hold (Section VI's remark and the conclusion): each a
-physically meaningful extension with a few parameters, applied to a simulation's output.
+"""Effects the base model does not hold, owned by the model (Section VI's remark and the
+conclusion: "a scaling function or factor in the friction force (3) or in the state equation
+(5)").
 
-The paper suggests "a scaling function or factor in the friction force (3) or in the state
-equation (5)". Here every effect is a function of the simulated signals (F, F_d(z), x, v, t,
-normal load, reversal count) and its parameters, and most are linear in their parameters
-given one nonlinear shape parameter (a period, a time constant), which the diagnosis scans.
-Two presliding effects instead change what is simulated: the stiffness effect rescales the
-transition curve's abscissas (``stiffness_scaled``), the direction asymmetry rescales the
-positive displacement increments (``direction_scaled_path``).
+Every effect is one ``Effect`` object: its name, what it describes, its parameters (unit kind,
+bounds, meaning) and how it acts on the model:
 
-An effect is stored in the parameter file as ``{name: ..., params: {...}}``.
+- ``acts_on="friction"``: a per-sample factor on the friction force F of eq. (3), inside the
+  simulation loop, so a force-driven or closed-loop plant feels it (``friction_scale`` of
+  ``model.simulate``);
+- ``acts_on="stiffness"``: a per-sample factor κ on the presliding stiffness, F_d evaluated at
+  κ·z in eqs. (4)–(5): the transition curve's abscissas divided by κ, same maximum force
+  (``stiffness_scale`` of ``model.simulate``).
+
+The factor is a function of a ``Context`` — time, position, velocity, normal load and the
+running count of significant reversals along the motion — and of the effect's parameters.
+``predict`` drives the model, with every effect of a parameter set, by a displacement, an
+applied force or a position controller; ``leuven-friction simulate``, the explorer and the
+diagnosis all predict through it. Adding an effect means adding one ``Effect`` to ``EFFECTS``.
+
+An effect is stored in a parameter file as ``{name: ..., params: {...}}``;
+``validate_effect_entry`` checks such an entry against its ``Effect``.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Callable, Mapping
 
 import numpy as np
 
-from .params import FrictionParams, TransitionCurve
+from .errors import ParameterError
 
 
-@dataclass
-class Signals:
-    """What an effect may depend on, sample by sample."""
+@dataclass(frozen=True)
+class EffectParam:
+    """One parameter of an effect. ``unit`` is a unit kind resolved against the parameter
+    set's units (``time``, ``position``, ``load``) or a literal ("1", "rad", "reversals")."""
+
+    name: str
+    unit: str
+    lo: float
+    hi: float
+    description: str
+    lo_open: bool = False  # the bound itself is excluded
+
+    def check(self, value, path: str) -> float:
+        try:
+            x = float(value)
+        except (TypeError, ValueError):
+            raise ParameterError(f"{path}: expected a number, got {value!r}") from None
+        if not math.isfinite(x):
+            raise ParameterError(f"{path}: must be finite, got {value!r}")
+        if x < self.lo or (self.lo_open and x == self.lo) or x > self.hi:
+            lo = f"({self.lo:g}" if self.lo_open else f"[{self.lo:g}"
+            raise ParameterError(f"{path}: must lie in {lo}, {self.hi:g}] ({self.description}), got {x:g}")
+        return x
+
+
+@dataclass(frozen=True)
+class Context:
+    """What an effect may depend on, sample by sample, along one motion."""
 
     time: np.ndarray
-    position: np.ndarray
-    velocity: np.ndarray
-    friction: np.ndarray  # the base model's friction force
-    transition: np.ndarray  # F_d(z) = F_h - F_b, the presliding part of the hysteresis force
-    reversals: np.ndarray  # cumulative count of velocity reversals
+    position: np.ndarray | None = None
+    velocity: np.ndarray | None = None
     load: np.ndarray | None = None
+    reversals: np.ndarray | None = None  # running count of significant reversals
+
+    def signal(self, name: str, effect: str) -> np.ndarray:
+        a = getattr(self, name)
+        if a is None:
+            raise ParameterError(f"effects.{effect}: needs the {name.replace('_', ' ')} signal, which this drive does not have")
+        return a
 
 
-def reversal_count(velocity: np.ndarray, v_min: float = 0.0) -> np.ndarray:
-    """Cumulative number of sign changes of the velocity (ignoring |v| <= v_min)."""
-    s = np.sign(np.where(np.abs(velocity) > v_min, velocity, 0.0))
-    idx = np.flatnonzero(s)
-    if len(idx) < 2:
-        return np.zeros(len(s))
-    changes = np.zeros(len(s))
-    changes[idx[1:]] = s[idx[1:]] != s[idx[:-1]]
-    return np.cumsum(changes)
+@dataclass(frozen=True)
+class Effect:
+    name: str
+    description: str
+    acts_on: str  # "friction" (factor on F, eq. (3)) or "stiffness" (factor on the presliding stiffness, eq. (5))
+    params: tuple[EffectParam, ...]
+    needs: tuple[str, ...]  # Context signals the factor depends on
+    factor: Callable[[Mapping[str, float], Context], np.ndarray] = field(repr=False)
+    separated_by: str = ""  # the experiment that isolates this effect from others
+
+    @property
+    def param_names(self) -> tuple[str, ...]:
+        return tuple(p.name for p in self.params)
+
+    def scale(self, values: Mapping[str, float], ctx: Context) -> np.ndarray:
+        return np.broadcast_to(np.asarray(self.factor(values, ctx), dtype=np.float64), ctx.time.shape)
+
+    def validate(self, values, path: str) -> dict:
+        if not isinstance(values, Mapping):
+            raise ParameterError(f"{path}: expected a mapping of {', '.join(self.param_names)}")
+        unknown = sorted(set(values) - set(self.param_names))
+        if unknown:
+            raise ParameterError(f"{path}.{unknown[0]}: unknown parameter of {self.name} "
+                                 f"(it has {', '.join(self.param_names)})")
+        out = {}
+        for p in self.params:
+            if p.name not in values:
+                raise ParameterError(f"{path}.{p.name}: missing ({self.name} needs {', '.join(self.param_names)})")
+            out[p.name] = p.check(values[p.name], f"{path}.{p.name}")
+        return out
 
 
-def _unit(a: np.ndarray) -> np.ndarray:
-    span = float(np.ptp(a))
-    return (a - float(np.mean(a))) / span if span > 0 else np.zeros_like(a)
+# ---------------------------------------------------------------- the factors
+def _drift(v, ctx):
+    # first-order approach of a temperature to its end value: F·(1 + b·(1 − e^{−(t − t0)/τ}))
+    t = ctx.signal("time", "time_drift")
+    return 1.0 + v["b"] * -np.expm1(-np.maximum(t - v["t0"], 0.0) / v["tau"])
 
 
-def lowpass(F: np.ndarray, t: np.ndarray, tau: float) -> np.ndarray:
-    """First-order lag of time constant tau (exact for piecewise-constant input)."""
-    dt = np.diff(t)
-    if len(dt) and np.ptp(dt) <= 1e-9 * dt[0]:
-        from scipy.signal import lfilter
+def _load(v, ctx):
+    # Amontons-like dependence with a contact exponent: F ∝ (N/N0)^α (α = 1: Coulomb's law,
+    # α < 1: elastic asperity contact). A negative load reading counts as no load.
+    n = ctx.signal("load", "normal_load")
+    return (np.maximum(n, 0.0) / v["N0"]) ** v["alpha"]
 
-        a = float(np.exp(-dt[0] / tau)) if tau > 0 else 0.0
-        return lfilter([1 - a], [1, -a], F, zi=[a * F[0]])[0]
-    out = np.empty_like(F)
-    y = F[0]
-    out[0] = y
-    a = np.exp(-dt / tau) if tau > 0 else np.zeros_like(dt)
-    for i in range(1, len(F)):
-        y = a[i - 1] * y + (1.0 - a[i - 1]) * F[i]
-        out[i] = y
+
+def _ripple(v, ctx):
+    x = ctx.signal("position", "position_ripple")
+    return 1.0 + v["a"] * np.sin(2.0 * np.pi * x / v["wavelength"] + v["phase"])
+
+
+def _softening(v, ctx):
+    # the contact wears in or work-hardens: κ(n) = 1 + h·(1 − e^{−n/n_c}) over the running
+    # count n of significant reversals (h < 0 softens, h > 0 hardens)
+    n = ctx.signal("reversals", "cyclic_softening")
+    return 1.0 + v["h"] * -np.expm1(-n / v["n_c"])
+
+
+def _stiffness(v, ctx):
+    return np.full(ctx.time.shape, v["kappa"])
+
+
+EFFECTS: dict[str, Effect] = {e.name: e for e in (
+    Effect("time_drift", "friction drifts in time as a first-order approach (warm-up of the lubricant, a "
+           "temperature settling with time constant τ)", "friction",
+           (EffectParam("b", "1", -0.95, 20.0, "relative change of friction once settled"),
+            EffectParam("tau", "time", 0.0, 1e12, "time constant of the approach", lo_open=True),
+            EffectParam("t0", "time", -1e12, 1e12, "start of the approach")),
+           ("time",), _drift, "repeat one test at fixed load and position after the machine has warmed up"),
+    Effect("normal_load", "friction scales with the normal load as (N/N0)^α", "friction",
+           (EffectParam("alpha", "1", 0.0, 3.0, "load exponent (1: Coulomb's law)"),
+            EffectParam("N0", "load", 0.0, 1e12, "reference load at which the base model holds", lo_open=True)),
+           ("load",), _load, "vary the load up and down at a fixed temperature (not on a monotone schedule)"),
+    Effect("position_ripple", "friction varies periodically with position (gear teeth, ball circulation, "
+           "a wavy guide)", "friction",
+           (EffectParam("a", "1", 0.0, 0.95, "relative amplitude"),
+            EffectParam("wavelength", "position", 0.0, 1e12, "period along the position", lo_open=True),
+            EffectParam("phase", "rad", -1e3, 1e3, "phase at position 0")),
+           ("position",), _ripple, "move over the same positions at different times and speeds"),
+    Effect("cyclic_softening", "the presliding spring softens (h < 0) or hardens (h > 0) with the number of "
+           "significant reversals, saturating", "stiffness",
+           (EffectParam("h", "1", -0.95, 20.0, "relative stiffness change once saturated"),
+            EffectParam("n_c", "reversals", 0.0, 1e12, "reversals to reach 63 % of the change", lo_open=True),
+            EffectParam("min_excursion", "position", 0.0, 1e12, "smallest back-travel counted as a reversal")),
+           ("reversals",), _softening, "alternate presliding cycles with long rests (time) at a fixed load"),
+    Effect("presliding_stiffness", "the presliding spring is uniformly stiffer (κ > 1) or softer than the "
+           "transition curve", "stiffness",
+           (EffectParam("kappa", "1", 0.01, 100.0, "stiffness factor"),),
+           (), _stiffness, "presliding cycles of several amplitudes"),
+)}
+
+
+def effect_of(name) -> Effect:
+    if name not in EFFECTS:
+        raise ParameterError(f"unknown effect {name!r} (known: {', '.join(EFFECTS)})")
+    return EFFECTS[name]
+
+
+def validate_effect_entry(entry, path: str) -> dict:
+    """A parameter file's effect entry ``{name, params}`` checked against its ``Effect``:
+    every problem is a ParameterError naming the dotted field. Returns the cleaned entry
+    (extra descriptive keys such as ``evidence`` are kept as they are)."""
+    if not isinstance(entry, Mapping):
+        raise ParameterError(f"{path}: expected a mapping with name and params")
+    name = entry.get("name")
+    if name not in EFFECTS:
+        raise ParameterError(f"{path}.name: must be one of {', '.join(EFFECTS)}, got {name!r}")
+    if "params" not in entry:
+        raise ParameterError(f"{path}.params: missing ({name} needs {', '.join(EFFECTS[name].param_names)})")
+    out = dict(entry)
+    out["params"] = EFFECTS[name].validate(entry["params"], f"{path}.params")
     return out
 
 
-# Each entry: (description, basis(signals, shape) -> columns, shape grid or None, parameter names)
-def _position_periodic(s: Signals, wavelength: float):
-    ph = 2 * math.pi * s.position / wavelength
-    return np.column_stack([s.friction * np.sin(ph), s.friction * np.cos(ph)])
-
-
-def _position_smooth(s: Signals, _):
-    xi = _unit(s.position)
-    return np.column_stack([s.friction * xi, s.friction * xi**2])
-
-
-def _time_drift(s: Signals, _):
-    # level, slope and curvature of a slow scaling: the level too, because a drift moves the
-    # presliding forces with the sliding ones, and refitting S(v) only takes out the latter
-    tau = _unit(s.time)
-    return np.column_stack([s.friction, s.friction * tau, s.friction * tau**2])
-
-
-def _normal_load(s: Signals, _):
-    if s.load is None:
-        return None
-    mean = float(np.mean(s.load))
-    return (s.friction * (s.load - mean) / (abs(mean) if mean else 1.0))[:, None]
-
-
-def direction_scaled_path(x: np.ndarray, c_up: float) -> np.ndarray:
-    """The displacement path with every increment in the positive direction divided by
-    ``c_up``. Driving the model with it gives ascending transition curves F_d(z/c_up) — a
-    presliding spring ``c_up`` times softer in the positive direction than in the negative
-    one — because eq. (5) for w = z/c_up is eq. (5) with the displacement scaled by 1/c_up."""
-    dx = np.diff(x)
-    return np.concatenate([[x[0]], x[0] + np.cumsum(np.where(dx > 0, dx / c_up, dx))])
-
-
-def _viscous_shape(s: Signals, _):
-    vmax = float(np.max(np.abs(s.velocity))) or 1.0
-    u = s.velocity / vmax
-    return np.column_stack([u * np.abs(u), u * np.abs(u) * np.abs(u)])
-
-
-def _cyclic_softening(s: Signals, _):
-    n = float(np.max(s.reversals)) or 1.0
-    return (s.transition * s.reversals / n)[:, None]
-
-
-def _frictional_lag(s: Signals, tau: float):
-    return (lowpass(s.friction, s.time, tau) - s.friction)[:, None]
-
-
-EFFECTS = {
-    "position_periodic": ("friction varies periodically with position (gear teeth, ball circulation, a "
-                          "wavy guide)", _position_periodic, ("a_sin", "a_cos")),
-    "position_smooth": ("friction varies smoothly along the stroke (uneven preload, wear, lubrication)",
-                        _position_smooth, ("c1", "c2")),
-    "time_drift": ("friction drifts over time (temperature, warm-up of the lubricant)", _time_drift,
-                   ("d0", "d1", "d2")),
-    "normal_load": ("friction scales with the normal load", _normal_load, ("k",)),
-    "sign_asymmetry": ("the presliding spring differs between the two directions of motion (an "
-                       "asymmetric contact; S(v) per sign already holds the sliding asymmetry)",
-                       None, ("c_up",)),
-    "viscous_shape": ("the sliding friction has a shape S(v) + σ2·v cannot follow (non-linear viscous "
-                      "friction)", _viscous_shape, ("q2", "q3")),
-    "presliding_stiffness": ("the presliding spring is stiffer or softer than the transition curve", None, ("scale",)),
-    "cyclic_softening": ("the presliding spring softens (or hardens) with the number of reversals",
-                         _cyclic_softening, ("h",)),
-    "frictional_lag": ("the friction lags the motion more than the model does", _frictional_lag, ("gain",)),
-}
-
-SHAPE = {"position_periodic": "wavelength", "frictional_lag": "tau"}
-
-
-def basis(name: str, s: Signals, shape: float | None = None):
-    """Columns whose linear combination is the effect's change of the friction force."""
-    return EFFECTS[name][1](s, shape)
-
-
-def stiffness_scaled(params: FrictionParams, scale: float) -> FrictionParams:
-    """The transition curve stretched along z by ``scale`` (> 1: softer presliding spring)."""
-    tc = params.transition_curve
-    if tc.kind == "piecewise_linear":
-        new = TransitionCurve(kind=tc.kind, z=tuple(v * scale for v in tc.z), F=tc.F)
-    else:
-        new = TransitionCurve(kind=tc.kind, shape=dict(tc.shape, z0=tc.shape["z0"] * scale, k=tc.shape["k"] / scale))
-    return params.replace(transition_curve=new)
-
-
-def apply_effects(effects, s: Signals) -> np.ndarray:
-    """The friction with the stored output effects added (the stiffness effect is already
-    in the transition curve of the parameters)."""
-    F = s.friction.copy()
-    for eff in effects:
-        name = eff["name"]
-        if name not in EFFECTS or EFFECTS[name][1] is None:
+# ---------------------------------------------------------------- along a motion
+def significant_reversals(x: np.ndarray, min_excursion: float = 0.0) -> np.ndarray:
+    """Running count of direction changes of the path ``x`` whose back-travel exceeds
+    ``min_excursion`` (a measured position's noise or quantisation step must not count). The
+    count steps up at the turning point itself, once the back-travel has confirmed it."""
+    x = np.asarray(x, dtype=np.float64)
+    n = len(x)
+    out = np.zeros(n)
+    if n < 2:
+        return out
+    moves = np.flatnonzero(np.diff(x) != 0.0) + 1
+    turns = []
+    direction = 0.0
+    ext_i = 0
+    ext = x[0]
+    for i in moves:
+        xi = x[i]
+        if direction == 0.0:
+            if abs(xi - x[0]) > min_excursion:
+                direction = 1.0 if xi > x[0] else -1.0
+                ext, ext_i = xi, i
             continue
-        B = basis(name, s, eff["params"].get(SHAPE.get(name, ""), None))
-        if B is None:
-            continue
-        coef = np.array([eff["params"][k] for k in EFFECTS[name][2]])
-        F = F + B @ coef
-    return F
+        if (xi - ext) * direction > 0.0:
+            ext, ext_i = xi, i
+        elif (ext - xi) * direction > min_excursion:
+            turns.append(ext_i)
+            direction = -direction
+            ext, ext_i = xi, i
+    if turns:
+        steps = np.zeros(n)
+        np.add.at(steps, np.asarray(turns), 1.0)
+        out = np.cumsum(steps)
+    return out
+
+
+def context_of(time, position=None, load=None, min_excursion: float = 0.0) -> Context:
+    """The context along a known motion: velocity as the backward difference of the path
+    (as the displacement driver does), reversals counted above ``min_excursion``."""
+    t = np.asarray(time, dtype=np.float64)
+    v = None
+    rev = None
+    if position is not None:
+        x = np.asarray(position, dtype=np.float64)
+        v = np.zeros_like(x)
+        v[1:] = np.diff(x) / np.diff(t)
+        rev = significant_reversals(x, min_excursion)
+    return Context(time=t, position=None if position is None else np.asarray(position, dtype=np.float64),
+                   velocity=v, load=None if load is None else np.asarray(load, dtype=np.float64), reversals=rev)
+
+
+def _reversal_threshold(entries) -> float:
+    th = [e["params"].get("min_excursion", 0.0) for e in entries if e["name"] == "cyclic_softening"]
+    return float(max(th)) if th else 0.0
+
+
+def effect_scales(effects, ctx: Context) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """(friction_scale, stiffness_scale): the product of every effect's factor, or None where
+    no effect acts."""
+    fs = ss = None
+    for i, entry in enumerate(effects):
+        eff = effect_of(entry["name"])
+        s = eff.scale(entry["params"], ctx)
+        if eff.acts_on == "friction":
+            fs = s.copy() if fs is None else fs * s
+        else:
+            ss = s.copy() if ss is None else ss * s
+    return fs, ss
+
+
+def needs_motion(effects) -> bool:
+    return any(n in ("position", "velocity", "reversals") for e in effects for n in effect_of(e["name"]).needs)
+
+
+DRIVES = ("displacement", "force", "closed_loop")
+
+
+@dataclass(frozen=True)
+class Signals:
+    """The recorded inputs a prediction is driven by.
+
+    ``displacement``: ``position`` is the prescribed path. ``force``: ``force`` is the applied
+    force of eq. (8); ``position``, when given, is the measured motion along which
+    position-dependent effects are evaluated (otherwise the motion is simulated once without
+    them and they are evaluated along it). ``closed_loop``: ``x_ref`` and the gains, with
+    ``force`` as an optional feedforward."""
+
+    time: np.ndarray
+    position: np.ndarray | None = None
+    force: np.ndarray | None = None
+    load: np.ndarray | None = None
+    x_ref: np.ndarray | None = None
+    kp: float = 0.0
+    ki: float = 0.0
+    encoder_step: float = 0.0
+    ctrl_every: int = 1
+    x0: float = 0.0
+    v0: float = 0.0
+    min_excursion: float | None = None  # reversal threshold for the context (default: the effects')
+
+
+def _run(params, drive: str, sig: Signals, fs, ss, state):
+    from .simulate import simulate_closed_loop, simulate_displacement, simulate_force
+
+    kw = {}
+    if fs is not None:
+        kw["friction_scale"] = fs
+    if ss is not None:
+        kw["stiffness_scale"] = ss
+    if drive == "displacement":
+        return simulate_displacement(params, sig.time, sig.position, state=state, **kw)
+    if drive == "force":
+        return simulate_force(params, sig.time, sig.force, x0=sig.x0, v0=sig.v0, state=state, **kw)
+    return simulate_closed_loop(params, sig.time, sig.x_ref, kp=sig.kp, ki=sig.ki, feedforward=sig.force,
+                                encoder_step=sig.encoder_step, ctrl_every=sig.ctrl_every, x0=sig.x0, state=state, **kw)
+
+
+def predict(params, drive: str, signals: Signals, *, state: np.ndarray | None = None):
+    """The model ``params`` with all its effects, driven by ``signals`` (see ``Signals``).
+    Returns the ``SimResult`` of ``model.simulate`` (friction, position, velocity, ...)."""
+    if drive not in DRIVES:
+        raise ParameterError(f"drive: must be one of {', '.join(DRIVES)}, got {drive!r}")
+    need = {"displacement": "position", "force": "force", "closed_loop": "x_ref"}[drive]
+    if getattr(signals, need) is None:
+        raise ParameterError(f"drive {drive}: needs the {need} signal")
+    effects = list(params.effects)
+    if not effects:
+        return _run(params, drive, signals, None, None, state)
+    th = _reversal_threshold(effects) if signals.min_excursion is None else signals.min_excursion
+    if drive == "displacement" or signals.position is not None or not needs_motion(effects):
+        ctx = context_of(signals.time, signals.position, signals.load, th)
+        fs, ss = effect_scales(effects, ctx)
+        return _run(params, drive, signals, fs, ss, state)
+    # the motion is the plant's output: evaluate the motion-dependent factors along a first
+    # pass without them (one fixed-point step), then simulate with all of them
+    still = [e for e in effects if not any(n in ("position", "velocity", "reversals") for n in effect_of(e["name"]).needs)]
+    ctx0 = context_of(signals.time, None, signals.load)
+    fs, ss = effect_scales(still, ctx0)
+    st0 = None if state is None else state.copy()
+    first = _run(params, drive, signals, fs, ss, st0)
+    ctx = context_of(signals.time, first.position, signals.load, th)
+    fs, ss = effect_scales(effects, ctx)
+    return _run(params, drive, signals, fs, ss, state)
