@@ -1,25 +1,29 @@
-"""Parameter files and the command line: round trips, and one-line errors for bad input."""
+"""Parameter files and the command line: round trips, and one-line errors for bad input.
 
-import subprocess
-import sys
+The command line runs in-process through ``main(argv)`` (what the installed script calls)."""
 
 import numpy as np
 import pandas as pd
 import pytest
 import yaml
 
+from leuven_friction.app.cli import main
 from leuven_friction.identify.paramfile import load_params, save_params
 from leuven_friction.model import FrictionParams, ParameterError, default_params, simulate_force
 
 
-def cli(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "leuven_friction.app.cli", *args], capture_output=True, text=True, cwd=cwd)
+def cli(capsys, *args):
+    """Run the command line in-process: (exit status, stdout, stderr)."""
+    rc = main([str(a) for a in args])
+    out = capsys.readouterr()
+    return rc, out.out, out.err
 
 
 def test_yaml_round_trip_preserves_model(tmp_path, kuka):
     path = tmp_path / "p.yaml"
     save_params(kuka, path)
     back = load_params(path)
+    assert back == kuka
     assert back.to_dict() == kuka.to_dict()
     t = np.arange(0, 2, 1e-4)
     np.testing.assert_array_equal(simulate_force(back, t, 20 * t).position, simulate_force(kuka, t, 20 * t).position)
@@ -48,50 +52,62 @@ def test_bad_parameters_name_the_field(change, field):
 
 
 @pytest.mark.parametrize("change,field", BAD[:5])
-def test_cli_bad_parameter_file_is_one_line_no_traceback(tmp_path, change, field):
+def test_cli_bad_parameter_file_is_one_line_no_traceback(tmp_path, capsys, change, field):
     d = default_params().to_dict()
     d.update(change)
     pfile = tmp_path / "bad.yaml"
     pfile.write_text(yaml.safe_dump(d))
     out = tmp_path / "out.csv"
-    r = cli("simulate", "--experiment", "abcd_ramp", "--params", str(pfile), "--out", str(out))
-    assert r.returncode == 2
-    lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and field in lines[0] and "Traceback" not in r.stderr
+    rc, _, err = cli(capsys, "simulate", "--experiment", "abcd_ramp", "--params", pfile, "--out", out)
+    assert rc == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and field in lines[0] and str(pfile) in lines[0]
     assert not out.exists()
 
 
-def test_cli_list_and_experiment_csv(tmp_path):
-    r = cli("simulate", "--list")
-    assert r.returncode == 0
+def test_cli_list_and_experiment_csv(tmp_path, capsys):
+    rc, stdout, _ = cli(capsys, "simulate", "--list")
+    assert rc == 0
     for name in ("abcd_ramp", "stick_slip", "tracking", "frictional_lag", "breakaway"):
-        assert name in r.stdout
+        assert name in stdout
     out = tmp_path / "abcd.csv"
-    r = cli("simulate", "--experiment", "abcd_ramp", "--model", "lugre", "--out", str(out))
-    assert r.returncode == 0, r.stderr
+    rc, _, err = cli(capsys, "simulate", "--experiment", "abcd_ramp", "--model", "lugre", "--out", out)
+    assert rc == 0, err
     df = pd.read_csv(out)
     assert list(df.columns) == ["time", "position", "velocity", "applied_force", "friction_force", "hysteresis_force", "z"]
     assert df["applied_force"].max() == pytest.approx(30.0, abs=1e-3)
 
 
-def test_cli_simulate_input_uses_recorded_position(tmp_path, kuka):
-    t = np.arange(0, 3, 1e-3)
-    x = 1e-4 * np.sin(2 * np.pi * t)
+def _steady_friction(side, v):
+    """Eq. (6) with eq. (7), Table I, written out here: S(v) + σ2·v at constant velocity."""
+    Fs, Fc, vs, delta, sigma2 = {"positive": (36.0, 27.0, 0.007, 0.5, 7.7),
+                                 "negative": (-63.0, -52.0, -0.004, 0.9, 8.0)}[side]
+    return Fc + (Fs - Fc) * np.exp(-abs(v / vs) ** delta) + sigma2 * v
+
+
+def test_cli_simulate_input_uses_recorded_position(tmp_path, capsys):
+    # a recorded motion at +v then -v, written in mrad: the prediction must convert it to rad
+    # and settle at the paper's steady sliding friction in each direction
+    v, dt = 0.02, 1e-3
+    t = np.arange(0, 3, dt)
+    x = np.where(t < 1.5, v * t, v * 1.5 - v * (t - 1.5))
     rec = tmp_path / "rec.csv"
     pd.DataFrame({"Time (s)": t, "Angle [mrad]": x * 1e3}).to_csv(rec, index=False)
     out = tmp_path / "pred.csv"
-    r = cli("simulate", "--input", str(rec), "--drive", "displacement", "--out", str(out))
-    assert r.returncode == 0, r.stderr
+    rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "displacement", "--out", out)
+    assert rc == 0, err
     pred = pd.read_csv(out)
     np.testing.assert_allclose(pred["position"], x, atol=1e-12)  # mrad converted to rad
-    from leuven_friction.model import simulate_displacement
+    F = pred["friction_force"].to_numpy()
+    i_up = np.searchsorted(t, 1.45)  # 1.45 s of sliding at +v, far past the approach (~0.01 s)
+    assert F[i_up] == pytest.approx(_steady_friction("positive", v), abs=1e-3)
+    assert F[-1] == pytest.approx(_steady_friction("negative", -v), abs=1e-3)
 
-    np.testing.assert_allclose(pred["friction_force"], simulate_displacement(kuka, t, x).friction_force, rtol=1e-8, atol=1e-8)
 
-
-def test_cli_missing_column_is_one_line(tmp_path):
+def test_cli_missing_column_is_one_line(tmp_path, capsys):
     rec = tmp_path / "rec.csv"
     pd.DataFrame({"t": np.arange(20.0), "temperature": np.ones(20)}).to_csv(rec, index=False)
-    r = cli("simulate", "--input", str(rec), "--out", str(tmp_path / "o.csv"))
-    assert r.returncode == 2
-    assert "no column for position" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    rc, _, err = cli(capsys, "simulate", "--input", rec, "--out", tmp_path / "o.csv")
+    assert rc == 2
+    assert "no column for position" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "o.csv").exists()
