@@ -8,6 +8,7 @@ import json
 import sys
 
 from ..model.errors import FrictionError
+from ..model.layout import MODEL_NAMES
 
 
 class UserError(FrictionError):
@@ -132,6 +133,17 @@ def cmd_diagnose(args) -> int:
     return 0
 
 
+def _positive_n(text: str) -> float:
+    """--n: a finite number > 0 (eq. (5)'s exponent), refused with one line otherwise."""
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not (x > 0 and x < float("inf")):
+        raise argparse.ArgumentTypeError(f"the exponent n of eq. (5) must be a finite number > 0, got {text!r}")
+    return x
+
+
 def cmd_fit(args) -> int:
     from ..identify.data import load_recording, parse_column_mapping
     from ..identify.fit import fit_recordings
@@ -146,8 +158,18 @@ def cmd_fit(args) -> int:
         for note in r.notes:
             print(f"{r.source}: {note}", file=sys.stderr)
 
+    overrides = {}
+    for item in args.threshold or []:
+        name, sep, value = item.partition("=")
+        try:
+            overrides[name.strip()] = float(value)
+        except ValueError:
+            raise UserError(f"--threshold {item!r}: expected name=number") from None
+        if not sep:
+            raise UserError(f"--threshold {item!r}: expected name=number")
     try:
-        res = fit_recordings(recs, base=base, n=args.n, fit_n=args.fit_n, progress=_progress)
+        res = fit_recordings(recs, base=base, n=args.n, fit_n=args.fit_n, progress=_progress, thresholds=overrides,
+                             friction_sign=args.friction_sign, refine=not args.no_refine)
     except FrictionError as e:
         print(file=sys.stderr)
         raise UserError(f"fit: {e}") from None
@@ -184,9 +206,13 @@ def cmd_bench(args) -> int:
     from .outputs import Outputs
 
     outputs = Outputs({"--json": args.json})  # checked before the work
-    from bench.simulator import run_all
+    from .bench import SECTIONS, run_all
 
-    results = run_all(quick=args.quick, progress=lambda msg: print(msg, file=sys.stderr))
+    sections = tuple(args.only.split(",")) if args.only else SECTIONS
+    unknown = [s for s in sections if s not in SECTIONS]
+    if unknown:
+        raise UserError(f"--only: unknown section {unknown[0]!r}; known: {', '.join(SECTIONS)}")
+    results = run_all(quick=args.quick, progress=lambda msg: print(msg, file=sys.stderr), sections=sections)
     print(json.dumps(results, indent=2))
     if args.json:
         with outputs:
@@ -208,7 +234,7 @@ def build_parser() -> argparse.ArgumentParser:
     s = sub.add_parser("simulate", help="run a paper experiment or drive the model with a recording")
     s.add_argument("--experiment", help="experiment name (see --list)")
     s.add_argument("--list", action="store_true", help="list the experiments")
-    s.add_argument("--model", choices=["leuven", "lugre", "static"], help="model kind (default: the file's, else leuven)")
+    s.add_argument("--model", choices=MODEL_NAMES, help="model kind (default: the file's, else leuven)")
     s.add_argument("--params", help="parameter YAML (default: the paper's KUKA IR 361 axis 1)")
     s.add_argument("--input", help="recorded CSV to drive the model with")
     s.add_argument("--drive", choices=["displacement", "force"], default="displacement",
@@ -222,8 +248,15 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--out", required=True, help="parameter YAML to write")
     f.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau")
     f.add_argument("--params", help="starting/default parameters for what the data cannot determine")
-    f.add_argument("--n", type=float, default=7.0, help="exponent n of eq. (5) (default 7, as the paper)")
+    f.add_argument("--n", type=_positive_n, default=7.0, help="exponent n of eq. (5) (default 7, as the paper)")
     f.add_argument("--fit-n", action="store_true", help="estimate n as well")
+    f.add_argument("--threshold", action="append", metavar="NAME=VALUE",
+                   help="override a segmentation threshold derived from the data (SI units; repeatable; the report "
+                        "lists the names: v_floor, rel_tol, min_run, window, f_turn, x_turn, min_travel, load_tol, ...)")
+    f.add_argument("--friction-sign", choices=["auto", "action", "reaction"], default="auto",
+                   help="sign convention of a measured friction column: auto detects a reaction force (positive while "
+                        "the position decreases) and flips it (default auto)")
+    f.add_argument("--no-refine", action="store_true", help="skip the output-error refinement")
     f.set_defaults(func=cmd_fit)
 
     d = sub.add_parser("diagnose", help="find the physical effect the model misses, add it, show the gap shrink")
@@ -237,6 +270,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     b = sub.add_parser("bench", help="measure simulator (and fit) speed")
     b.add_argument("--quick", action="store_true", help="smaller problem sizes")
+    b.add_argument("--only", help="comma-separated sections to run (simulator, startup, io, scale)")
     b.add_argument("--json", help="also write the results to this JSON file")
     b.set_defaults(func=cmd_bench)
     return ap

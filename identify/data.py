@@ -28,7 +28,8 @@ ALIASES = {
     "force": ("force", "torque", "applied_torque", "applied_force", "u", "tau", "motor_torque", "f"),
     "velocity": ("velocity", "v", "speed", "qd", "omega"),
     "friction": ("friction", "friction_force", "friction_torque", "ff"),
-    "normal_load": ("normal_load", "load", "normal_force", "fn", "n_load"),
+    "normal_load": ("normal_load", "load", "normal_force", "fn", "f_n", "n_load", "normal", "n", "normal_load_n",
+                    "force_normal", "normalforce"),
     "temperature": ("temperature", "temp", "t_oil", "celsius"),
 }
 
@@ -97,10 +98,18 @@ def parse_column_mapping(spec: str | None) -> dict:
 
 
 def _read_table(path: Path, text: str) -> pd.DataFrame:
-    first = text.splitlines()[0] if text else ""
-    sep = "\t" if first.count("\t") > max(first.count(","), 0) else ("," if "," in first else r"\s+")
+    """Guess the separator from the header (the first line that is not a ``#`` comment):
+    tab, semicolon (European CSV: then a comma is the decimal mark), comma, or whitespace."""
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    first = lines[0] if lines else ""
+    counts = {"\t": first.count("\t"), ";": first.count(";"), ",": first.count(",")}
+    sep = max(counts, key=counts.get) if max(counts.values()) > 0 else r"\s+"
+    decimal = "."
+    if sep == ";" and len(lines) > 1 and re.search(r"\d,\d", lines[1]):
+        decimal = ","
     try:
-        return pd.read_csv(io.StringIO(text), sep=sep, engine="c", comment="#", skip_blank_lines=True)
+        return pd.read_csv(io.StringIO(text), sep=sep, engine="c" if sep != r"\s+" else "python", comment="#",
+                           skip_blank_lines=True, decimal=decimal)
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
         raise DataError(f"{path}: not a readable CSV/TSV table ({msg})") from None

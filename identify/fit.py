@@ -181,7 +181,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         fb = force_branches(pr, p.stribeck.positive.Fs, p.stribeck.negative.Fs, v_max)
         if fb:
             ds = PreslidingData(fb, pr.position_noise, name=f"{pr.source} (force-driven)")
-            ds.x_noise = noise_sd(pr.position_noise)
+            # resolution: one encoder step, or one σ of a Gaussian sensor
+            ds.x_noise = getattr(pr.position_noise, "step", None) or noise_sd(pr.position_noise)
             datasets.append(ds)
         mb = motion_branches(pr)
         if mb:

@@ -170,7 +170,7 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
     dts = np.diff(t)
     dt = float(np.median(dts))
     th.rate = 1.0 / dt
-    th.gap = 5.0 * dt
+    th.gap = 5.0 * float(np.quantile(dts, 0.99))  # robust to files mixing sample rates
     uniform = bool(np.ptp(dts) <= 0.01 * dt)
     noise = detect_noise(x)
     th.x_noise = float(noise_sd(noise))
@@ -180,8 +180,8 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
     W = max(2, n // 200)
     vc = (x[W:] - x[:-W]) / (t[W:] - t[:-W])
     moving = np.abs(vc) > 10.0 * th.x_noise / (W * dt)
-    v_low = float(np.quantile(np.abs(vc[moving]), 0.1)) if moving.sum() > 10 else 0.0
-    # window: the slope noise at most 2 % of the slow motions, n/1000 … n/400 samples (at
+    v_low = float(np.quantile(np.abs(vc[moving]), 0.5)) if moving.sum() > 10 else 0.0
+    # window: the slope noise at most 2 % of the typical (median) motion, n/1000 … n/400 samples (at
     # least 5): long enough to average a controller's velocity ripple, short against the
     # runs so accelerations stay visible
     w = max(5, (n // 1000) | 1)
@@ -250,7 +250,7 @@ def _travel_threshold(x, h) -> float:
         return 0.0
     le = np.log(e)
     i = int(np.argmax(np.diff(le)))
-    if le[i + 1] - le[i] < np.log(5.0):
+    if le[i + 1] - le[i] < np.log(20.0):
         return 0.0
     return float(np.sqrt(e[i] * e[i + 1]))
 
