@@ -295,18 +295,20 @@ class Engine:
         return self._windows(fs, ss)
 
     def _windows(self, fs, ss) -> np.ndarray:
-        from ..model.windows import simulate_windows
-
         c = self.c
-        if not hasattr(self, "_starts"):
-            self._starts = np.array([a for a, _ in c.windows], dtype=np.int64)
-            v0 = c.velocity[self._starts].copy()
-            v0[np.abs(v0) < c.v_rest] = 0.0
-            self._x0 = c.path[self._starts].copy()
-            self._v0 = v0
+        out = np.empty(len(c.time))
+        from ..model.simulate import initial_state
+
+        st = initial_state(self.p)
+        for a, b in c.windows:
+            v0 = float(c.velocity[a])
+            if abs(v0) < c.v_rest:
+                v0 = 0.0
+            r = simulate_force(self.p, c.time[a:b], c.force[a:b], x0=float(c.path[a]), v0=v0, state=st,
+                               friction_scale=fs[a:b], stiffness_scale=None if ss is None else ss[a:b])
+            out[a:b] = r.position
         self.sims += 1
-        return simulate_windows(self.p, c.time, c.force, self._starts, self._x0, self._v0, friction_scale=fs,
-                                stiffness_scale=ss)
+        return out
 
 
 @dataclass
