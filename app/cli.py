@@ -8,6 +8,7 @@ import json
 import sys
 
 from ..model.errors import FrictionError
+from ..model.layout import MODEL_NAMES
 
 
 class UserError(FrictionError):
@@ -205,9 +206,13 @@ def cmd_bench(args) -> int:
     from .outputs import Outputs
 
     outputs = Outputs({"--json": args.json})  # checked before the work
-    from bench.simulator import run_all
+    from .bench import SECTIONS, run_all
 
-    results = run_all(quick=args.quick, progress=lambda msg: print(msg, file=sys.stderr))
+    sections = tuple(args.only.split(",")) if args.only else SECTIONS
+    unknown = [s for s in sections if s not in SECTIONS]
+    if unknown:
+        raise UserError(f"--only: unknown section {unknown[0]!r}; known: {', '.join(SECTIONS)}")
+    results = run_all(quick=args.quick, progress=lambda msg: print(msg, file=sys.stderr), sections=sections)
     print(json.dumps(results, indent=2))
     if args.json:
         with outputs:
@@ -229,7 +234,7 @@ def build_parser() -> argparse.ArgumentParser:
     s = sub.add_parser("simulate", help="run a paper experiment or drive the model with a recording")
     s.add_argument("--experiment", help="experiment name (see --list)")
     s.add_argument("--list", action="store_true", help="list the experiments")
-    s.add_argument("--model", choices=["leuven", "lugre", "static"], help="model kind (default: the file's, else leuven)")
+    s.add_argument("--model", choices=MODEL_NAMES, help="model kind (default: the file's, else leuven)")
     s.add_argument("--params", help="parameter YAML (default: the paper's KUKA IR 361 axis 1)")
     s.add_argument("--input", help="recorded CSV to drive the model with")
     s.add_argument("--drive", choices=["displacement", "force"], default="displacement",
@@ -265,6 +270,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     b = sub.add_parser("bench", help="measure simulator (and fit) speed")
     b.add_argument("--quick", action="store_true", help="smaller problem sizes")
+    b.add_argument("--only", help="comma-separated sections to run (simulator, startup, io, scale)")
     b.add_argument("--json", help="also write the results to this JSON file")
     b.set_defaults(func=cmd_bench)
     return ap

@@ -1,13 +1,12 @@
 """Compiled kernels: the friction models and the three simulation drivers, on plain arrays.
 
-Conventions shared by every kernel:
+Conventions shared by every kernel (the layout itself lives in ``model.layout``):
 
-``p``  float64 parameter vector, layout ``P_*`` below (``model.simulate.pack`` builds it);
-``kind, tz, tF``  the transition curve (kind 0 piecewise linear through knots (tz, tF);
-    kind 1 tanh_linear with ``tF = [A, z0, k]``);
-``st``  float64 state vector: the header ``S_*`` then the two stacks of extrema of
-    Section III-B, stack m (minima of F_h, ascending) and stack M (maxima, descending),
-    each of capacity ``(len(st) - HEADER) // 2``.
+``p``  float64 parameter vector, indices ``P_*`` (``model.simulate.pack`` builds it);
+``kind, tz, tF``  the transition curve (``CurveKind.PIECEWISE_LINEAR``: knots (tz, tF);
+    ``CurveKind.TANH_LINEAR``: ``tF = [A, z0, k]``);
+``st``  float64 state vector, indices ``S_*``: a header, then the stacks m and M;
+``fsc, ksc``  friction and stiffness scales per sample, or one value for all samples.
 
 The hysteresis memory is three functions, side by side, as the paper lists them:
 ``velocity_reversal``, ``close_internal_loops`` and ``reset_to_outer_loop``.
@@ -20,31 +19,47 @@ import math
 import numpy as np
 from numba import njit
 
-# error_model="numpy": divisions follow IEEE rules instead of raising (no per-division check
-# in the hot loop). Small helpers are inlined at the Numba IR level: a call that passes
-# arrays otherwise costs reference counting on every step.
-# nogil: a long simulation in one thread (the web app's experiment tab) must not stall
-# another (its live plots).
-kernel = njit(cache=True, error_model="numpy", nogil=True)
-helper = njit(cache=True, error_model="numpy", inline="always", nogil=True)
+from .layout import (
+    HEADER,
+    P_INERTIA,
+    P_N,
+    P_NINT,
+    P_REVTOL,
+    P_SIGMA0,
+    P_SIGMA1,
+    P_SIZE,
+    P_SP,
+    S_CLOSINGS,
+    S_DEPTH,
+    S_DIR,
+    S_DROPPED,
+    S_FB,
+    S_NMAX,
+    S_NMIN,
+    S_RESETS,
+    S_REVERSALS,
+    S_SV,
+    S_Z,
+    STRIBECK_SIDE,
+    CurveKind,
+    ModelKind,
+    new_state,
+)
 
-LEUVEN, LUGRE, STATIC = 0, 1, 2
+__all__ = ["P_SIZE", "new_state"]  # the layout is re-exported for the kernels' callers
 
-# parameter vector
-P_SP = 0  # 10 Stribeck values: Fs+, Fc+, vs+, delta+, sigma2+, Fs-, Fc-, vs-, delta-, sigma2-
-P_N = 10
-P_NINT = 11  # n when it is a small integer (fast power), else 0
-P_SIGMA1 = 12
-P_SIGMA0 = 13
-P_REVTOL = 14
-P_INERTIA = 15
-P_SIZE = 16
+# Compiled without numba's reference counting (_nrt=False): no kernel allocates (every output
+# array is passed in), and with reference counting each call of a helper that takes an array
+# costs atomic increments and decrements on every step, more than the arithmetic of a step at
+# rest. error_model="numpy": divisions follow IEEE rules instead of raising (no per-division
+# check in the hot loop). nogil: a long simulation in one thread (the web app's experiment
+# tab) must not stall another (its live plots). Small helpers are inlined at the Numba IR level.
+kernel = njit(cache=True, error_model="numpy", nogil=True, _nrt=False)
+helper = njit(cache=True, error_model="numpy", inline="always", nogil=True, _nrt=False)
 
-# state vector header
-S_Z, S_FB, S_DIR, S_NMIN, S_NMAX = 0, 1, 2, 3, 4
-S_REVERSALS, S_CLOSINGS, S_RESETS, S_DEPTH, S_DROPPED = 5, 6, 7, 8, 9
-S_SV = 10  # S(v) of the last step (reused by the plant's linearisation)
-HEADER = 11
+LEUVEN, LUGRE, STATIC = int(ModelKind.LEUVEN), int(ModelKind.LUGRE), int(ModelKind.STATIC)
+PIECEWISE_LINEAR = int(CurveKind.PIECEWISE_LINEAR)
+NEG = P_SP + STRIBECK_SIDE  # first Stribeck value of the negative side
 
 # F_h within this fraction of S(v) - F_b counts as "dz/dt has become zero" (reset to sliding).
 # Eq. (5) only approaches S(v) asymptotically; without a tolerance the reset of Section
@@ -55,17 +70,46 @@ RESET_TOL = 1e-9
 # ---------------------------------------------------------------- constant-velocity curve
 @helper
 def stribeck(p, v, side):
-    """Eq. (7) on the side ``side`` (+1/-1); |v/vs| because Table I's negative vs is negative."""
-    o = P_SP if side > 0 else P_SP + 5
+    """Eq. (7) on the side ``side`` (+1/-1); |v/vs| because Table I's negative vs is negative.
+    delta = 1/2 (Table I's positive side) is a square root, not a general power."""
+    o = P_SP if side > 0 else NEG
     Fs, Fc, vs, dl = p[o], p[o + 1], p[o + 2], p[o + 3]
     if v == 0.0:
         return Fs
-    return Fc + (Fs - Fc) * math.exp(-(abs(v / vs) ** dl))
+    u = abs(v / vs)
+    e = math.sqrt(u) if dl == 0.5 else u**dl
+    return Fc + (Fs - Fc) * math.exp(-e)
 
 
 @helper
 def viscous_coefficient(p, side):
-    return p[P_SP + 4] if side > 0 else p[P_SP + 9]
+    return p[P_SP + 4] if side > 0 else p[NEG + 4]
+
+
+@kernel
+def stribeck_pass(p, t, x, V, S):
+    """Velocity (backward difference of x) and S(v) of a prescribed motion, in one pass ahead
+    of the state loop: no step depends on another here, so the exp and pow of eq. (7) of
+    successive steps overlap in the pipeline instead of queueing behind the Newton solve.
+    A velocity equal to the previous one reuses its S (an encoder-quantised motion repeats a
+    handful of velocities)."""
+    V[0] = 0.0
+    vlast = 0.0
+    slast = p[P_SP]
+    for k in range(1, t.shape[0]):
+        v = (x[k] - x[k - 1]) / (t[k] - t[k - 1])
+        V[k] = v
+        if v != vlast:
+            vlast = v
+            slast = stribeck(p, v, 1.0 if v > 0.0 else -1.0)
+        S[k] = slast
+
+
+@kernel
+def stribeck_array(p, v, out):
+    """S(v) per sample (F_s of the side at v = 0)."""
+    for k in range(v.shape[0]):
+        out[k] = stribeck(p, v[k], 1.0 if v[k] >= 0.0 else -1.0)
 
 
 # ---------------------------------------------------------------- transition curve F_d
@@ -91,7 +135,7 @@ def _odd_interp(xk, yk, u):
 @helper
 def transition_curve(kind, tz, tF, z):
     """F_d(z), point-symmetric; piecewise linear extended past the last knot."""
-    if kind == 0:
+    if kind == PIECEWISE_LINEAR:
         return _odd_interp(tz, tF, z)
     return tF[0] * math.tanh(z / tF[1]) + tF[2] * z
 
@@ -99,7 +143,7 @@ def transition_curve(kind, tz, tF, z):
 @helper
 def transition_slope(kind, tz, tF, z):
     """dF_d/dz; at a knot the slope of the segment on the far side of the origin's."""
-    if kind == 0:
+    if kind == PIECEWISE_LINEAR:
         i = _segment(tz, abs(z))
         return (tF[i] - tF[i - 1]) / (tz[i] - tz[i - 1])
     c = math.cosh(z / tF[1])
@@ -115,7 +159,7 @@ def transition_curve_array(kind, tz, tF, z, out):
 @kernel
 def transition_curve_inverse(kind, tz, tF, F):
     """F_d^{-1}(F): needed by loop closing and reset."""
-    if kind == 0:
+    if kind == PIECEWISE_LINEAR:
         return _odd_interp(tF, tz, F)
     A, z0, k = tF[0], tF[1], tF[2]
     a = abs(F)
@@ -285,44 +329,62 @@ def init_state(st, p, fh0):
 # ---------------------------------------------------------------- state equation (5)
 @helper
 def _abs_pow(a, p):
-    """|a|^(n-1) with a fast path for the integer n of the paper (n = 7)."""
+    """a^(n-1) for a >= 0. For an integer n, multiplications by repeated squaring: for the
+    paper's n = 7, a^6 = (a·a·a)², three multiplications deep instead of six."""
     ni = int(p[P_NINT])
+    if ni == 7:
+        a3 = a * a * a
+        return a3 * a3
     if ni > 0:
+        m = ni - 1
         r = 1.0
-        for _ in range(ni - 1):
-            r *= a
+        b = a
+        while m > 0:
+            if m & 1:
+                r *= b
+            b *= b
+            m >>= 1
         return r
     return a ** (p[P_N] - 1.0)
 
 
 @helper
-def solve_state_equation(p, kind, tz, tF, z0, dx, D, kap):
+def solve_state_equation(p, kind, tz, tF, z0, fd0, dx, D, kap):
     """Backward-Euler step of eq. (5) written per unit displacement,
-    z1 = z0 + dx·(1 - sign(r)|r|^n), r = F_d(z1)/D, D = S(v) - F_b.
+    z1 = z0 + dx·(1 - sign(r)|r|^n), r = F_d(κ·z1)/D, D = S(v) - F_b; ``fd0`` = F_d(κ·z0).
 
-    Eq. (5) is stiff in sliding (rate |v|·n·F_d'/|D|); the implicit step is unconditionally
-    stable there. With dx/D > 0 the residual is strictly increasing in z1, so the root is
-    unique and is bracketed by [z0, z0 + dx] below the steady state and by
-    [F_d^{-1}(D), z0] above it; Newton, falling back to bisection inside the bracket.
+    Eq. (5) is stiff in sliding (rate |v|·n·κF_d'/|D|); the implicit step is unconditionally
+    stable there. With dx/D > 0 the residual g is strictly increasing in z1, so the root is
+    unique. The first guess is the linearly implicit step (one Newton step from z0 with the
+    Jacobian at z0): in presliding it is the explicit step, in sliding it lands within O(dx²)
+    of the root instead of overshooting by the stiffness ratio, so most steps need one
+    correction. Each evaluation of g narrows a bracket; a Newton step leaving it bisects.
+    The bracket's far end, [z0, z0 + dx] below the steady state and [F_d^{-1}(D)/κ, z0]
+    above it, costs an inversion of the curve and is only computed when a step needs more
+    than one correction (large steps, e.g. encoder jumps).
     """
-    fd0 = transition_curve(kind, tz, tF, kap * z0)
-    r0 = fd0 / D
-    a0 = abs(r0)
-    ph0 = _abs_pow(a0, p) * r0
-    if ph0 < 1.0:
-        lo, hi = z0, z0 + dx
-    else:
-        lo, hi = transition_curve_inverse(kind, tz, tF, D) / kap, z0
-    if lo > hi:
-        lo, hi = hi, lo
-    z = z0 + dx * (1.0 - ph0)
-    if z < lo or z > hi:
-        z = 0.5 * (lo + hi)
-    # 1e-7 of the step: far below the O(dt) error of the time step itself, and usually reached
-    # by the first Newton correction of the explicit guess
-    tol = 1e-7 * abs(dx) + 1e-300
     n = p[P_N]
-    for _ in range(60):
+    r0 = fd0 / D
+    rn0 = _abs_pow(abs(r0), p)
+    ph0 = rn0 * r0
+    below = ph0 < 1.0
+    g0 = -dx * (1.0 - ph0)
+    dg0 = 1.0 + dx * n * rn0 * kap * transition_slope(kind, tz, tF, kap * z0) / D
+    z = z0 - g0 / dg0
+    # z0 bounds the root on one side (g(z0) = g0); z0 + dx on the other below the steady state
+    if g0 < 0.0:
+        lo, hi = z0, math.inf
+    else:
+        lo, hi = -math.inf, z0
+    if below:  # [z0, z0 + dx] is free
+        if dx > 0.0:
+            hi = z0 + dx
+        else:
+            lo = z0 + dx
+    # 1e-7 of the step: far below the O(dt) error of the time step itself
+    tol = 1e-7 * abs(dx) + 1e-300
+    far_known = below
+    for it in range(60):
         fd = transition_curve(kind, tz, tF, kap * z)
         r = fd / D
         rn1 = _abs_pow(abs(r), p)
@@ -330,14 +392,21 @@ def solve_state_equation(p, kind, tz, tF, z0, dx, D, kap):
         if g == 0.0:
             break
         if g > 0.0:
-            hi = z
+            hi = min(hi, z)
         else:
-            lo = z
+            lo = max(lo, z)
         dg = 1.0 + dx * n * rn1 * kap * transition_slope(kind, tz, tF, kap * z) / D
         zn = z - g / dg
         if abs(zn - z) <= tol:
             z = zn
             break
+        if not far_known:
+            far_known = True
+            zs = transition_curve_inverse(kind, tz, tF, D) / kap
+            if dx > 0.0:
+                lo = max(lo, zs)
+            else:
+                hi = min(hi, zs)
         if zn <= lo or zn >= hi:
             zn = 0.5 * (lo + hi)
         z = zn
@@ -346,12 +415,24 @@ def solve_state_equation(p, kind, tz, tF, z0, dx, D, kap):
 
 # ---------------------------------------------------------------- one step of each model
 @helper
+def hysteresis(model, st, p, kind, tz, tF, kap):
+    """F_h of the current state: eq. (4) for Leuven, σ0·z for LuGre (κ·σ0 with a stiffness
+    scale), the last S(v) or the stuck force for the static model."""
+    if model == LEUVEN:
+        return hysteresis_force(st, kind, tz, tF, kap)
+    if model == LUGRE:
+        return kap * p[P_SIGMA0] * st[S_Z]
+    return st[S_FB]
+
+
+@helper
 def leuven_advance(st, p, kind, tz, tF, dx, side, s, kap):
     """Advance the Leuven state over displacement ``dx`` moving in direction ``side`` with
     S(v) = ``s``.
 
-    Returns the continuous change of z (for sigma1·dz/dt); the jumps of z made by reset and
-    loop closing leave F_h unchanged and are not part of dz/dt.
+    Returns (continuous change of z, F_h after the step); the continuous change is what
+    σ1·dz/dt sees: the jumps of z made by reset and loop closing leave F_h unchanged and are
+    not part of dz/dt.
     """
     if side != st[S_DIR]:
         velocity_reversal(st, p, kind, tz, tF, side, kap)
@@ -368,10 +449,15 @@ def leuven_advance(st, p, kind, tz, tF, dx, side, s, kap):
         fb = st[S_FB]
         z = st[S_Z]
         D = s - fb
-    z1 = solve_state_equation(p, kind, tz, tF, z, dx, D, kap)
+        fd = transition_curve(kind, tz, tF, kap * z)
+    z1 = solve_state_equation(p, kind, tz, tF, z, fd, dx, D, kap)
     st[S_Z] = z1
-    close_internal_loops(st, kind, tz, tF, fb + transition_curve(kind, tz, tF, kap * z1), kap)
-    return z1 - z
+    fh = fb + transition_curve(kind, tz, tF, kap * z1)
+    nmin = st[S_NMIN]
+    nmax = st[S_NMAX]
+    if nmin >= 2.0 and nmax >= 2.0:
+        close_internal_loops(st, kind, tz, tF, fh, kap)
+    return z1 - z, fh
 
 
 @helper
@@ -389,23 +475,27 @@ def lugre_advance(st, p, dx, side, s, kap):
 
 
 @helper
-def advance(model, st, p, kind, tz, tF, dx, v, kap):
-    """Advance the friction state over one step; returns the continuous change of z.
-
-    S(v) is evaluated once here for all three models (it is the costly part of a step: one
-    exp and one non-integer power). The static model keeps S(v) in the F_b slot of the state.
-    """
-    if dx == 0.0 or v == 0.0:
-        return 0.0
-    side = 1.0 if v > 0.0 else -1.0
-    s = stribeck(p, v, side)
+def advance_with(model, st, p, kind, tz, tF, dx, side, s, kap):
+    """Advance the friction state over one step of length dx ≠ 0 with S(v) = ``s``; returns
+    (continuous change of z, F_h after the step). The static model keeps S(v) in the F_b slot."""
     st[S_SV] = s
     if model == LEUVEN:
         return leuven_advance(st, p, kind, tz, tF, dx, side, s, kap)
     if model == LUGRE:
-        return lugre_advance(st, p, dx, side, s, kap)
+        dz = lugre_advance(st, p, dx, side, s, kap)
+        return dz, kap * p[P_SIGMA0] * st[S_Z]
     st[S_FB] = s
-    return 0.0
+    return 0.0, s
+
+
+@helper
+def advance(model, st, p, kind, tz, tF, dx, v, kap):
+    """Advance the friction state over one step; returns the continuous change of z."""
+    if dx == 0.0 or v == 0.0:
+        return 0.0
+    side = 1.0 if v > 0.0 else -1.0
+    dz, _ = advance_with(model, st, p, kind, tz, tF, dx, side, stribeck(p, v, side), kap)
+    return dz
 
 
 @helper
@@ -413,37 +503,63 @@ def friction_output(model, st, p, kind, tz, tF, dz, dt, v, sc, kap):
     """(F, F_h): eq. (3) for Leuven, eq. (2) for LuGre, S(v) + σ2·v for the static model
     (which reports its last S, or the stuck force, at v = 0); both times the friction scale
     ``sc`` (1 for the model as given), which multiplies the whole of eq. (3)."""
-    if model == LEUVEN:
-        fh = hysteresis_force(st, kind, tz, tF, kap)
-    elif model == LUGRE:
-        fh = kap * p[P_SIGMA0] * st[S_Z]
-    else:
-        fh = st[S_FB]
+    fh = hysteresis(model, st, p, kind, tz, tF, kap)
     side = 1.0 if v >= 0.0 else -1.0
     return sc * (fh + p[P_SIGMA1] * dz / dt + viscous_coefficient(p, side) * v), sc * fh
 
 
 # ---------------------------------------------------------------- driver 1: prescribed x(t)
+@helper
+def _displacement_step(model, p, kind, tz, tF, st, t, x, F, Fh, Z, V, k, sc, kap, kap_last, fh, sig1, c_pos, c_neg):
+    """Step k of ``run_displacement``; returns F_h after it (unscaled). σ1 and σ2± come in as
+    scalars: read from ``p`` they would be reloaded every step (the output arrays may alias it)."""
+    v = V[k]
+    if v == 0.0:
+        if kap != kap_last:
+            fh = hysteresis(model, st, p, kind, tz, tF, kap)
+        F[k] = sc * fh
+        Fh[k] = sc * fh
+    else:
+        side = 1.0 if v > 0.0 else -1.0
+        dz, fh = advance_with(model, st, p, kind, tz, tF, x[k] - x[k - 1], side, Fh[k], kap)
+        F[k] = sc * (fh + sig1 * dz / (t[k] - t[k - 1]) + (c_pos if side > 0.0 else c_neg) * v)
+        Fh[k] = sc * fh
+    Z[k] = st[S_Z]
+    return fh
+
+
 @kernel
 def run_displacement(model, p, kind, tz, tF, st, t, x, fsc, ksc, F, Fh, Z, V):
     """Friction along a prescribed displacement; v is the backward difference of x.
 
-    ``fsc``, ``ksc``: per-sample friction and stiffness scales, or one value for all samples.
+    S(v) is evaluated for the whole motion first (``stribeck_pass``, into ``Fh`` as scratch);
+    a step at rest (dx = 0, most steps of an encoder-quantised motion) only copies F_h.
+    Scales given as one value are read once, outside the loop.
     """
-    fstep = 1 if fsc.shape[0] > 1 else 0
-    kstep = 1 if ksc.shape[0] > 1 else 0
-    F[0], Fh[0] = friction_output(model, st, p, kind, tz, tF, 0.0, 1.0, 0.0, fsc[0], ksc[0])
+    n = t.shape[0]
+    stribeck_pass(p, t, x, V, Fh)
+    fh = hysteresis(model, st, p, kind, tz, tF, ksc[0])
+    F[0] = fsc[0] * fh
+    Fh[0] = fsc[0] * fh
     Z[0] = st[S_Z]
-    V[0] = 0.0
-    for k in range(1, t.shape[0]):
-        dt = t[k] - t[k - 1]
-        dx = x[k] - x[k - 1]
-        v = dx / dt
-        kap = ksc[k * kstep]
-        dz = advance(model, st, p, kind, tz, tF, dx, v, kap)
-        F[k], Fh[k] = friction_output(model, st, p, kind, tz, tF, dz, dt, v, fsc[k * fstep], kap)
-        Z[k] = st[S_Z]
-        V[k] = v
+    sig1 = p[P_SIGMA1]
+    c_pos = p[P_SP + 4]
+    c_neg = p[NEG + 4]
+    if fsc.shape[0] == 1 and ksc.shape[0] == 1:
+        sc = fsc[0]
+        kap = ksc[0]
+        for k in range(1, n):
+            fh = _displacement_step(model, p, kind, tz, tF, st, t, x, F, Fh, Z, V, k, sc, kap, kap, fh,
+                                    sig1, c_pos, c_neg)
+    else:
+        fstep = 1 if fsc.shape[0] > 1 else 0
+        kstep = 1 if ksc.shape[0] > 1 else 0
+        kap_last = ksc[0]
+        for k in range(1, n):
+            kap = ksc[k * kstep]
+            fh = _displacement_step(model, p, kind, tz, tF, st, t, x, F, Fh, Z, V, k, fsc[k * fstep], kap,
+                                    kap_last, fh, sig1, c_pos, c_neg)
+            kap_last = kap
 
 
 # ---------------------------------------------------------------- plant, eq. (8)
@@ -556,7 +672,3 @@ def run_closed_loop(model, p, kind, tz, tF, st, t, x_ref, ff, kp, ki, q, ctrl_ev
         U[k] = u
         Z[k] = st[S_Z]
     U[0] = U[1] if t.shape[0] > 1 else 0.0
-
-
-def new_state(cap: int = 64) -> np.ndarray:
-    return np.zeros(HEADER + 2 * cap)

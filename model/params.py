@@ -21,9 +21,10 @@ from dataclasses import MISSING, dataclass, field, fields, replace
 import numpy as np
 
 from .errors import ParameterError
+from .layout import CURVE_NAMES, MODEL_NAMES, CurveKind
 
-MODEL_KINDS = ("leuven", "lugre", "static")
-TRANSITION_KINDS = ("piecewise_linear", "tanh_linear")
+MODEL_KINDS = MODEL_NAMES  # ("leuven", "lugre", "static"): model.layout.ModelKind
+TRANSITION_KINDS = CURVE_NAMES  # ("piecewise_linear", "tanh_linear"): model.layout.CurveKind
 
 # A transition curve is a handful of turning points (Table II has five, the fit uses five);
 # more than this is a mistake, and refusing it keeps a file from stalling a simulation or the
@@ -396,9 +397,10 @@ class TransitionCurve:
     def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray]:
         """(kind code, abscissas, ordinates-or-shape) for ``model.kernels``."""
         if self.kind == "piecewise_linear":
-            return 0, np.asarray(self.z, dtype=np.float64), np.asarray(self.F, dtype=np.float64)
+            return (int(CurveKind.PIECEWISE_LINEAR), np.asarray(self.z, dtype=np.float64),
+                    np.asarray(self.F, dtype=np.float64))
         s = self.shape
-        return 1, np.zeros(1), np.array([s.A, s.z0, s.k], dtype=np.float64)
+        return int(CurveKind.TANH_LINEAR), np.zeros(1), np.array([s.A, s.z0, s.k], dtype=np.float64)
 
     def to_dict(self) -> dict:
         if self.kind == "piecewise_linear":

@@ -13,11 +13,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import kernels as K
+from . import layout as L
 from .errors import SignalError
 from .params import FrictionParams
 
 COLUMNS = ("time", "position", "velocity", "applied_force", "friction_force", "hysteresis_force", "z")
-MODEL_CODES = {"leuven": K.LEUVEN, "lugre": K.LUGRE, "static": K.STATIC}
 
 
 @dataclass
@@ -43,40 +43,31 @@ class SimResult:
 
 def pack(params: FrictionParams) -> tuple[int, np.ndarray, int, np.ndarray, np.ndarray]:
     """(model code, parameter vector, transition kind, tz, tF) for ``model.kernels``."""
-    p = np.zeros(K.P_SIZE)
-    p[K.P_SP : K.P_SP + 10] = params.stribeck.as_array()
-    p[K.P_N] = params.n
-    p[K.P_NINT] = params.n if (float(params.n).is_integer() and 1 <= params.n <= 32) else 0
-    p[K.P_SIGMA1] = params.sigma1
-    p[K.P_SIGMA0] = params.sigma0 or 0.0
-    p[K.P_REVTOL] = params.reversal_tol
-    p[K.P_INERTIA] = params.inertia
+    p = np.zeros(L.P_SIZE)
+    p[L.P_SP : L.P_SP + 2 * L.STRIBECK_SIDE] = params.stribeck.as_array()
+    p[L.P_N] = params.n
+    p[L.P_NINT] = params.n if (float(params.n).is_integer() and 1 <= params.n <= 32) else 0
+    p[L.P_SIGMA1] = params.sigma1
+    p[L.P_SIGMA0] = params.sigma0 or 0.0
+    p[L.P_REVTOL] = params.reversal_tol
+    p[L.P_INERTIA] = params.inertia
     kind, tz, tF = params.transition_curve.kernel_arrays()
-    return MODEL_CODES[params.model], p, kind, tz, tF
+    return int(L.ModelKind.parse(params.model)), p, kind, tz, tF
 
 
 def initial_state(params: FrictionParams, fh0: float = 0.0, stack_depth: int = 64) -> np.ndarray:
     """At rest, hysteresis force ``fh0``, memory holding only the outer loop F_s- … F_s+."""
     _, p, *_ = pack(params)
-    st = K.new_state(stack_depth)
+    st = L.new_state(stack_depth)
     K.init_state(st, p, fh0)
     if params.model == "lugre" and params.sigma0:
-        st[K.S_Z] = fh0 / params.sigma0
+        st[L.S_Z] = fh0 / params.sigma0
     return st
 
 
 def memory_summary(st: np.ndarray) -> dict:
-    cap = (len(st) - K.HEADER) // 2
-    nmin, nmax = int(st[K.S_NMIN]), int(st[K.S_NMAX])
-    return {
-        "reversals": int(st[K.S_REVERSALS]),
-        "loop_closings": int(st[K.S_CLOSINGS]),
-        "resets": int(st[K.S_RESETS]),
-        "max_stack_depth": int(st[K.S_DEPTH]),
-        "dropped_pairs": int(st[K.S_DROPPED]),
-        "stack_m": st[K.HEADER : K.HEADER + nmin].tolist(),
-        "stack_M": st[K.HEADER + cap : K.HEADER + cap + nmax].tolist(),
-    }
+    """The hysteresis memory of a state vector as a JSON-able record."""
+    return L.State(st).summary()
 
 
 def _time(t) -> np.ndarray:

@@ -5,6 +5,7 @@ import pytest
 
 from leuven_friction.model import initial_state, simulate_displacement, simulate_force, transition_curve_values
 from leuven_friction.model import kernels as K
+from leuven_friction.model.layout import State
 from leuven_friction.model.experiments import abcd_ramp
 from leuven_friction.model.simulate import memory_summary, pack
 
@@ -43,7 +44,7 @@ def test_closing_internal_loop_wipes_it_out_and_continues_outer_curve(kuka):
     assert mem["stack_m"] == [kuka.stribeck.negative.Fs, 0.0]  # the inner minimum is gone
     assert mem["stack_M"] == [kuka.stribeck.positive.Fs]  # and so is the inner maximum
     # after closing, the curve is the one that started at F_b = 0: F_h = F_d(z) exactly (F_h–z plane)
-    assert st[K.S_FB] == 0.0
+    assert State(st).F_b == 0.0
     assert r.hysteresis_force[-1] == pytest.approx(transition_curve_values(kuka, [r.z[-1]])[0], rel=1e-12)
     # (in the x–F plane the closing is only approximate: on the inner ascending curve
     # S(v) - F_b is small, eq. (5) makes z lag x, see test_abcd_* for the paper's ramp)
@@ -60,7 +61,7 @@ def test_reset_on_going_to_sliding(kuka):
     assert mem["resets"] >= 1
     assert mem["stack_m"] == [kuka.stribeck.negative.Fs]
     assert mem["stack_M"] == [kuka.stribeck.positive.Fs]
-    assert st[K.S_FB] == kuka.stribeck.negative.Fs  # F_b = F_s- while moving +
+    assert State(st).F_b == kuka.stribeck.negative.Fs  # F_b = F_s- while moving +
 
 
 def test_reset_keeps_friction_continuous(kuka):
