@@ -211,3 +211,266 @@ def candidates_figure(d) -> go.Figure:
 
 def diagnosis_figures(d) -> list:
     return [diagnosis_time_figure(d), residual_figure(d), regime_figure(d), candidates_figure(d)]
+
+
+# ---------------------------------------------------------------- the explorer's overview
+OVERVIEW_TITLE = "Model overview"
+MODEL_STYLE = {"main": dict(color=COLORS[0], width=2), "proposal": dict(color=COLORS[2], width=2, dash="dash"),
+               "overlay": dict(color=COLORS[4], width=1.5, dash="dot")}
+_ANN = dict(xref="paper", yref="paper", showarrow=False, font=dict(size=13), xanchor="left", yanchor="bottom")
+
+
+def _ax(title: str, domain, anchor: str, **kw) -> dict:
+    return dict(AXIS, title=dict(text=title, standoff=4), domain=domain, anchor=anchor, **kw)
+
+
+def abcd_marks(r) -> dict:
+    """Indices of the turning points A, B, C, D of an A→B→C→D force ramp (Figs. 2, 10)."""
+    f = r.applied_force
+    d = np.sign(np.diff(f))
+    iB = int(np.argmax(d < 0)) if np.any(d < 0) else len(f) - 1
+    rest = d[iB:]
+    iC = iB + int(np.argmax(rest > 0)) if np.any(rest > 0) else len(f) - 1
+    return {"A": 0, "B": iB, "C": iC, "D": len(f) - 1}
+
+
+def stribeck_band(p, v: np.ndarray, cov: np.ndarray | None = None):
+    """±1σ of S(v) + σ2·v from the parameter uncertainties (per side: the fit's covariance
+    when given, else the stored standard deviations taken as uncorrelated), or None."""
+    from ..model import stribeck_curve as _S
+
+    names = ("Fs", "Fc", "vs", "delta", "sigma2")
+    var = np.zeros_like(v)
+    any_unc = False
+    for side, mask in (("positive", v > 0), ("negative", v < 0)):
+        sd = np.array([p.uncertainty.get(f"stribeck.{side}.{k}", 0.0) for k in names])
+        if not np.any(sd > 0):
+            continue
+        any_unc = True
+        J = np.zeros((mask.sum(), 5))
+        base = _S(p, v[mask])
+        for j, k in enumerate(names):
+            h = max(abs(getattr(getattr(p.stribeck, side), k)) * 1e-6, 1e-12)
+            sp = getattr(p.stribeck, side)
+            from dataclasses import replace as _rep
+
+            q = p.replace(stribeck=_rep(p.stribeck, **{side: _rep(sp, **{k: getattr(sp, k) + h})}))
+            J[:, j] = (_S(q, v[mask]) - base) / h
+        C = np.diag(sd**2) if cov is None else cov[side]
+        var[mask] = np.einsum("ij,jk,ik->i", J, C, J)
+    return np.sqrt(var) if any_unc else None
+
+
+def overview_figure(*, units: dict, hyst: list, strib: list, slip: list, bottom: dict, log_v: bool = True,
+                    levels=None, band=None, notes: tuple = ()) -> go.Figure:
+    """The four views an engineer looks at together, in one figure (one update per change).
+
+    ``hyst``: (label, role, SimResult of the A→B→C→D ramp or None) — role main/proposal/overlay;
+    an overlay gets its own axes (top/right), so it never rescales the main loop.
+    ``strib``: (label, role, v, S(v)); ``slip``: (label, role, SimResult); ``bottom``: the
+    fourth view, ``{"kind": "data", t, measured, model: [(label, role, F)]}`` or
+    ``{"kind": "curve", z, F, zk, Fk, sigma}`` (the transition curve and its knots).
+    """
+    pu, fu = units.get("position", "rad"), units.get("force", "N*m")
+    data, ann = [], []
+    L, R, TOP, BOT = [0.0, 0.44], [0.56, 1.0], [0.58, 0.94], [0.0, 0.42]
+    layout = dict(
+        xaxis=_ax(f"displacement (µ{pu})", L, "y"), yaxis=_ax(f"friction ({fu})", TOP, "x"),
+        xaxis2=_ax(f"|v| ({pu}/s), log" if log_v else f"velocity ({pu}/s)", R, "y2", type="log" if log_v else "linear"),
+        yaxis2=_ax(f"|friction| ({fu})" if log_v else f"friction ({fu})", TOP, "x2"),
+        xaxis3=_ax("time (s)", L, "y3"), yaxis3=_ax(f"position ({pu})", [0.25, 0.42], "x3"),
+        yaxis6=_ax(f"friction ({fu})", [0.0, 0.19], "x6"), xaxis6=_ax("", L, "y6", matches="x3", showticklabels=False),
+        xaxis4=_ax("", R, "y4"), yaxis4=_ax("", BOT, "x4"),
+    )
+    layout["xaxis3"]["anchor"] = "y6"  # the time axis under the lower stick-slip plot
+    layout["xaxis6"]["anchor"] = "y3"
+
+    # --- presliding hysteresis, A–D marked
+    has_loop = False
+    for label, role, r in hyst:
+        if r is None:
+            continue
+        x, F = _thin(r.position, r.friction_force, n=600)
+        ax = dict(xaxis="x5", yaxis="y5") if role == "overlay" else dict(xaxis="x", yaxis="y")
+        data.append(dict(type="scatter", x=x * 1e6, y=F, mode="lines", name=label, line=MODEL_STYLE[role],
+                         legendgroup=label, **ax))
+        if role == "main":
+            has_loop = True
+            m = abcd_marks(r)
+            data.append(dict(type="scatter", x=[r.position[i] * 1e6 for i in m.values()],
+                             y=[r.friction_force[i] for i in m.values()], mode="markers+text", text=list(m),
+                             textposition="top left", marker=dict(color="black", size=7), name="A–D", showlegend=False,
+                             hoverinfo="x+y+text"))
+        if role == "overlay":
+            layout["xaxis5"] = dict(AXIS, overlaying="x", side="top", anchor="y", showgrid=False,
+                                    title=dict(text=f"{label} displacement (µ{pu})", standoff=2),
+                                    tickfont=dict(color=COLORS[4]), automargin=True)
+            layout["yaxis5"] = dict(AXIS, overlaying="y", side="right", anchor="x", showgrid=False,
+                                    tickfont=dict(color=COLORS[4]), automargin=True)
+    if not has_loop:
+        ann.append(dict(_ANN, x=0.22, y=0.76, xanchor="center", yanchor="middle", font=dict(size=12, color="#555"),
+                        text="the static model has no presliding:<br>friction jumps at v = 0, no hysteresis curve"))
+    ann.append(dict(_ANN, x=0.0, y=0.955, text="<b>Presliding hysteresis</b> A→B→C→D"))
+
+    # --- Stribeck curve S(v) + σ2·v
+    for label, role, v, S in strib:
+        for sign, dash in ((1, None), (-1, "dot")):
+            m = v * sign > 0
+            xx, yy = (np.abs(v[m]), np.abs(S[m])) if log_v else (v[m], S[m])
+            line = dict(MODEL_STYLE[role], **({"dash": dash} if dash and role == "main" else {}))
+            data.append(dict(type="scatter", x=xx, y=yy, mode="lines", xaxis="x2", yaxis="y2", line=line,
+                             name=f"{label} ({'v > 0' if sign > 0 else 'v < 0'})", showlegend=False, legendgroup=label))
+    if band is not None:
+        v, S, sd = band
+        for sign in (1, -1):
+            m = v * sign > 0
+            xx = np.abs(v[m]) if log_v else v[m]
+            lo, hi = (np.abs(S[m] - sd[m]), np.abs(S[m] + sd[m])) if log_v else (S[m] - sd[m], S[m] + sd[m])
+            data.append(dict(type="scatter", x=np.concatenate([xx, xx[::-1]]), y=np.concatenate([hi, lo[::-1]]),
+                             fill="toself", fillcolor="rgba(31,119,180,0.18)", line=dict(width=0), xaxis="x2", yaxis="y2",
+                             name="±1σ", showlegend=sign > 0, hoverinfo="skip"))
+    if levels is not None and len(levels.velocity):
+        lv, lf = levels.velocity, levels.friction
+        data.append(dict(type="scatter", x=np.abs(lv) if log_v else lv, y=np.abs(lf) if log_v else lf, mode="markers",
+                         xaxis="x2", yaxis="y2", name="measured levels", marker=dict(color="black", size=5),
+                         error_y=dict(array=np.sqrt(levels.variance), thickness=1, width=2)))
+    ann.append(dict(_ANN, x=0.56, y=0.955, text="<b>Stribeck curve</b> S(v) + σ2·v" +
+                    (" (solid v > 0, dotted v < 0)" if log_v else "")))
+
+    # --- stick-slip under P control
+    for label, role, r in slip:
+        t, x, F = _thin(r.time, r.position, r.friction_force, n=600)
+        data.append(dict(type="scatter", x=t, y=x, mode="lines", xaxis="x3", yaxis="y3", line=MODEL_STYLE[role],
+                         name=label, showlegend=False, legendgroup=label))
+        data.append(dict(type="scatter", x=t, y=F, mode="lines", xaxis="x6", yaxis="y6", line=MODEL_STYLE[role],
+                         name=f"{label} friction", showlegend=False, legendgroup=label))
+    ann.append(dict(_ANN, x=0.0, y=0.43, text="<b>Stick-slip</b> under P position control"))
+
+    # --- the fourth view
+    if bottom.get("kind") == "data":
+        t, y = _thin(bottom["t"], bottom["measured"], n=1500)
+        data.append(dict(type="scattergl" if len(t) > 3000 else "scatter", x=t, y=y, mode="markers", xaxis="x4",
+                         yaxis="y4", name="measured", marker=dict(size=2.5, color="#7f7f7f")))
+        for label, role, F in bottom.get("model", ()):
+            tt, ff = _thin(bottom["t"], F, n=1500)
+            data.append(dict(type="scatter", x=tt, y=ff, mode="lines", xaxis="x4", yaxis="y4",
+                             line=dict(MODEL_STYLE[role], width=1.2), name=f"{label} on the data", showlegend=False))
+        layout["xaxis4"]["title"] = dict(text="time (s)", standoff=4)
+        layout["yaxis4"]["title"] = dict(text=f"friction ({fu})", standoff=4)
+        ann.append(dict(_ANN, x=0.56, y=0.43, text=f"<b>Data with the model</b> {bottom.get('name', '')}"))
+    else:
+        z, F = bottom.get("z", ()), bottom.get("F", ())
+        if len(z):
+            data.append(dict(type="scatter", x=np.asarray(z) * 1e6, y=F, mode="lines", xaxis="x4", yaxis="y4",
+                             line=MODEL_STYLE["main"], name="F_d(z)", showlegend=False))
+            sig = bottom.get("sigma")
+            data.append(dict(type="scatter", x=np.asarray(bottom["zk"]) * 1e6, y=bottom["Fk"], mode="markers",
+                             xaxis="x4", yaxis="y4", marker=dict(color="black", size=6), name="knots", showlegend=False,
+                             **({"error_y": dict(array=sig, thickness=1)} if sig is not None else {})))
+        else:
+            ann.append(dict(_ANN, x=0.78, y=0.2, xanchor="center", text="no transition curve in this model",
+                            font=dict(size=12, color="#555")))
+        layout["xaxis4"]["title"] = dict(text=f"z (µ{pu})", standoff=4)
+        layout["yaxis4"]["title"] = dict(text=f"F_d ({fu})", standoff=4)
+        ann.append(dict(_ANN, x=0.56, y=0.43, text="<b>Transition curve</b> F_d(z) — upload data to see it here"))
+    for i, n in enumerate(notes):
+        ann.append(dict(_ANN, x=1.0, xanchor="right", y=1.0 + 0.04 * i, text=n, font=dict(size=11, color="#a05a00")))
+    layout.update(
+        title=dict(text=OVERVIEW_TITLE, x=0.0, y=0.995, font=dict(size=1, color="white")),
+        annotations=ann, plot_bgcolor="white", paper_bgcolor="white", hovermode="closest",
+        font=dict(family="Open Sans, Arial, sans-serif", size=11), margin=dict(l=55, r=45, t=26, b=40),
+        legend=dict(orientation="h", x=0.0, y=1.04, xanchor="left", yanchor="bottom", font=dict(size=11)),
+    )
+    return go.Figure(dict(data=data, layout=layout), _validate=False)
+
+
+# ---------------------------------------------------------------- an uploaded recording, before any fit
+RECORDING_TITLE = "Recording"
+
+
+def reversal_windows(x: np.ndarray, v: np.ndarray, max_windows: int = 8) -> list[tuple[int, int]]:
+    """Sample ranges from each velocity reversal to the next (at most ``max_windows``)."""
+    s = np.sign(v)
+    nz = np.flatnonzero(s != 0)
+    if len(nz) < 2:
+        return []
+    flips = nz[1:][s[nz[1:]] != s[nz[:-1]]]
+    bounds = list(flips) + [len(x) - 1]
+    return [(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:]) if b - a > 3][:max_windows]
+
+
+def recording_figure(*, name: str, t, position, friction, friction_label: str, units: dict, velocity=None,
+                     levels=None, model_curves: list = (), band=None) -> go.Figure:
+    """Signals against time (top), friction against velocity with the constant-velocity
+    levels found (bottom left), friction against displacement from each reversal (bottom right)."""
+    pu, fu = units.get("position", "?"), units.get("force", "?")
+    data, ann = [], []
+    TOP1, TOP2, BOT, L, R = [0.78, 1.0], [0.55, 0.74], [0.0, 0.42], [0.0, 0.44], [0.56, 1.0]
+    layout = dict(
+        xaxis=_ax("", [0, 1], "y", showticklabels=False, matches="x2"), yaxis=_ax(f"position ({pu})", TOP1, "x"),
+        xaxis2=_ax("time (s)", [0, 1], "y2"), yaxis2=_ax(f"{friction_label} ({fu})", TOP2, "x2"),
+        xaxis3=_ax(f"velocity ({pu}/s)", L, "y3"), yaxis3=_ax(f"{friction_label} ({fu})", BOT, "x3"),
+        xaxis4=_ax(f"displacement since reversal ({pu})", R, "y4"), yaxis4=_ax(f"{friction_label} ({fu})", BOT, "x4"),
+    )
+    if position is not None:
+        tt, xx = _thin(t, position, n=2000)
+        data.append(dict(type="scatter", x=tt, y=xx, mode="lines", line=dict(color=COLORS[0], width=1), name="position",
+                         showlegend=False))
+    if friction is not None:
+        tt, ff = _thin(t, friction, n=2000)
+        data.append(dict(type="scatter", x=tt, y=ff, mode="lines", xaxis="x2", yaxis="y2", line=dict(color=COLORS[1], width=1),
+                         name=friction_label, showlegend=False))
+    ann.append(dict(_ANN, x=0.0, y=1.005, text=f"<b>{name}</b>: signals against time"))
+    if velocity is not None and friction is not None:
+        vv, ff = _thin(velocity, friction, n=3000)
+        data.append(dict(type="scatter", x=vv, y=ff, mode="markers", xaxis="x3", yaxis="y3",
+                         marker=dict(size=2, color="#9a9a9a"), name="samples", showlegend=False))
+        for label, role, v, S in model_curves:
+            data.append(dict(type="scatter", x=v, y=S, mode="lines", xaxis="x3", yaxis="y3", line=MODEL_STYLE[role],
+                             name=label, showlegend=False))
+        if band is not None:
+            v, S, sd = band
+            for sign in (1, -1):
+                m = v * sign > 0
+                data.append(dict(type="scatter", x=np.concatenate([v[m], v[m][::-1]]),
+                                 y=np.concatenate([S[m] + sd[m], (S[m] - sd[m])[::-1]]), fill="toself",
+                                 fillcolor="rgba(31,119,180,0.18)", line=dict(width=0), xaxis="x3", yaxis="y3",
+                                 name="±1σ", showlegend=False, hoverinfo="skip"))
+        if levels is not None and len(levels.velocity):
+            data.append(dict(type="scatter", x=levels.velocity, y=levels.friction, mode="markers", xaxis="x3", yaxis="y3",
+                             marker=dict(color="black", size=6, symbol="diamond"), name="levels found", showlegend=False,
+                             error_y=dict(array=np.sqrt(levels.variance), thickness=1)))
+        nlev = 0 if levels is None else len(levels.velocity)
+        ann.append(dict(_ANN, x=0.0, y=0.43, text=f"<b>Friction vs velocity</b> — {nlev} constant-velocity levels found"))
+    if position is not None and friction is not None and velocity is not None:
+        wins = reversal_windows(position, velocity)
+        for i, (a, b) in enumerate(wins):
+            xx, ff = _thin(position[a:b] - position[a], friction[a:b], n=400)
+            data.append(dict(type="scatter", x=xx, y=ff, mode="lines", xaxis="x4", yaxis="y4",
+                             line=dict(color=COLORS[i % 6], width=1), name=f"reversal {i + 1}", showlegend=False))
+        ann.append(dict(_ANN, x=0.56, y=0.43, text=f"<b>Around reversals</b> — first {len(wins)} shown"))
+    layout.update(title=dict(text=RECORDING_TITLE, font=dict(size=1, color="white")), annotations=ann,
+                  plot_bgcolor="white", paper_bgcolor="white", font=dict(family="Open Sans, Arial, sans-serif", size=11),
+                  margin=dict(l=60, r=20, t=22, b=40), showlegend=False)
+    return go.Figure(dict(data=data, layout=layout), _validate=False)
+
+
+def figure_csv(fig) -> str:
+    """The data behind a figure, one row per point: trace, x, y (and ±σ where drawn)."""
+    import csv
+    import io
+
+    out = io.StringIO()
+    w = csv.writer(out)
+    w.writerow(["trace", "x_axis", "x", "y", "sigma"])
+    for tr in fig.data if hasattr(fig, "data") else fig["data"]:
+        tr = tr if isinstance(tr, dict) else tr.to_plotly_json()
+        x, y = tr.get("x"), tr.get("y")
+        if x is None or y is None:
+            continue
+        err = (tr.get("error_y") or {}).get("array")
+        name = tr.get("name", "")
+        axis = tr.get("xaxis", "x")
+        for i, (a, b) in enumerate(zip(np.asarray(x).tolist(), np.asarray(y).tolist())):
+            w.writerow([name, axis, a, b, "" if err is None else float(np.asarray(err)[i])])
+    return out.getvalue()

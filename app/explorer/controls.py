@@ -1,0 +1,139 @@
+"""One control per parameter: a text box that takes what a person types, and a slider.
+
+The text box is the number entry (parsed on the server by ``numbers.parse_number``: no
+garbling, no clamping); the slider beside it moves the same value, on a log scale for
+parameters spanning decades. A value the model cannot take is refused with a message and
+not applied; a value outside the slider's range widens the range.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from typing import Callable
+
+import viser
+
+from ...model import FrictionParams
+from ...model.errors import ParameterError
+from .fields import Field, check_field, get_value
+from .numbers import format_number, parse_number
+
+SLIDER_STEPS = 400
+
+
+def _exp(x: float) -> float:
+    return math.log10(abs(x))
+
+
+class ParamControl:
+    """The text box and slider of one field."""
+
+    def __init__(self, gui: viser.GuiApi, f: Field, value: float,
+                 apply: Callable[[Field, float | None, str | None], str | None]):
+        self.field = f
+        self.apply = apply
+        self._quiet = threading.local()
+        unit = f.unit
+        label = f"{f.label} ({unit})" if unit else f.label
+        scale = " Slider: log scale." if f.scale == "log" else ""
+        self.text = gui.add_text(label, format_number(value),
+                                 hint=f"{f.hint}. Type e.g. 0.005, 5e-3 or 0,005.{scale}")
+        self.label = label
+        lo, hi = self._range(value)
+        self.slider = gui.add_slider(" ", min=lo, max=hi, step=(hi - lo) / SLIDER_STEPS,
+                                     initial_value=self._to_slider(value), marks=self._marks(lo, hi),
+                                     hint=f"{label}{' — log scale' if f.scale == 'log' else ''}")
+
+        @self.text.on_update
+        def _(_) -> None:
+            if getattr(self._quiet, "on", False):
+                return
+            try:
+                v = parse_number(self.text.value, self.field.label)
+            except ParameterError as e:
+                self.apply(self.field, None, str(e))
+                return
+            why = check_field(self.field, v)
+            if why:
+                self.apply(self.field, None, why)
+                return
+            if self.apply(self.field, v, None) is None:
+                self._move_slider(v)
+
+        @self.slider.on_update
+        def _(_) -> None:
+            if getattr(self._quiet, "on", False):
+                return
+            v = self._from_slider(self.slider.value)
+            if self.apply(self.field, v, None) is None:
+                self._set_text(v)
+
+    # -- slider coordinates: the value itself, or log10 |value| for a log field
+    def _to_slider(self, v: float) -> float:
+        return _exp(v) if self.field.scale == "log" else v
+
+    def _from_slider(self, s: float) -> float:
+        if self.field.scale == "log":
+            return (-1 if self.field.sign < 0 else 1) * float(f"{10 ** s:.6g}")
+        return float(f"{s:.6g}")
+
+    def _range(self, v: float) -> tuple[float, float]:
+        f = self.field
+        if f.scale == "log":
+            e = _exp(v) if v != 0 else 0.0
+            return math.floor(e - 1.5), math.ceil(e + 1.5)
+        lo, hi = f.spec.slider_range(v)
+        return (lo, hi) if hi > lo else (lo, lo + 1.0)
+
+    def _marks(self, lo: float, hi: float):
+        if self.field.scale == "log":
+            es = list(range(int(math.ceil(lo)), int(math.floor(hi)) + 1))
+            es = es[:: max(1, math.ceil(len(es) / 4))]
+            return tuple((float(e), f"1e{e}") for e in es)
+        return ((lo, f"{lo:.3g}"), (hi, f"{hi:.3g}"))
+
+    def _move_slider(self, v: float) -> None:
+        s = self._to_slider(v)
+        self._quiet.on = True
+        try:
+            if not (self.slider.min <= s <= self.slider.max):
+                lo, hi = self._range(v)
+                lo, hi = min(lo, self.slider.min, s), max(hi, self.slider.max, s)
+                self.slider.min, self.slider.max = lo, hi
+                self.slider.step = (hi - lo) / SLIDER_STEPS
+                self.slider.marks = self._marks(lo, hi)
+            self.slider.value = s
+        finally:
+            self._quiet.on = False
+
+    def _set_text(self, v: float) -> None:
+        self._quiet.on = True
+        try:
+            self.text.value = format_number(v)
+        finally:
+            self._quiet.on = False
+
+    def show(self, v: float | None) -> None:
+        """Move both widgets to ``v`` (from code: another set was restored or accepted)."""
+        if v is None:
+            return
+        self._set_text(v)
+        self._move_slider(v)
+
+    def set_enabled(self, on: bool) -> None:
+        self.text.disabled = not on
+        self.slider.disabled = not on
+
+    def remove(self) -> None:
+        self.text.remove()
+        self.slider.remove()
+
+
+def value_for(p: FrictionParams, f: Field) -> float:
+    v = get_value(p, f.path)
+    if v is None and f.path == "sigma0":  # the LuGre σ0 fitted to the Leuven transition curve (Fig. 4)
+        from ...model import as_model
+
+        v = float(as_model(p.replace(model="leuven"), "lugre").sigma0)
+    return 1.0 if v is None else v

@@ -1,0 +1,328 @@
+"""The Data tab: the user's recording first, then a fit offered as a proposal.
+
+An upload is read and plotted at once (signals against time, friction against velocity
+with the constant-velocity levels found, friction against displacement from each reversal).
+The page lists the columns, units and sign it recognised; a dropdown per signal changes
+the mapping. The fit then runs on whatever the data support, in this tab's job thread, and
+comes back as a proposal that says what it estimated, what it held and why.
+"""
+
+from __future__ import annotations
+
+import io
+import re
+
+import numpy as np
+import viser
+
+from ...identify.data import SIGNALS, Recording, load_recording, velocity_of
+from ...identify.errors import DataError, IdentificationError
+from ...model.errors import FrictionError
+from .. import plots
+from .context import Context, Proposal, plot_config
+from .jobs import Cancelled, JobThread
+
+NONE = "(none)"
+MAPPED = ("time", "position", "force", "friction", "velocity", "normal_load")
+SIGNAL_HELP = {"time": "time stamps", "position": "displacement / joint angle", "force": "applied force or motor torque",
+               "friction": "measured friction force", "velocity": "velocity (else differentiated from position)",
+               "normal_load": "normal load (for load-dependent friction)"}
+
+
+def web_message(e: Exception, name: str) -> str:
+    """A loader's message for a web user: names the file, points at the column dropdowns
+    instead of the command line's ``--columns``."""
+    msg = str(e)
+    msg = re.sub(r";?\s*name (it|them) with --columns[^)]*", "; choose it under Data → Columns", msg)
+    msg = msg.replace("--columns", "the column dropdowns")
+    return msg if name in msg else f"{name}: {msg}"
+
+
+def header_columns(content: bytes) -> list[str]:
+    """The column names of a CSV/TSV upload (the loader's separator guess), or []."""
+    import pandas as pd
+
+    try:
+        text = content.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return []
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    if not lines:
+        return []
+    first = lines[0]
+    sep = "\t" if first.count("\t") > first.count(",") else ("," if "," in first else (";" if ";" in first else r"\s+"))
+    try:
+        return [str(c) for c in pd.read_csv(io.StringIO("\n".join(lines[:3])), sep=sep, engine="python").columns]
+    except Exception:
+        return []
+
+
+def friction_of(rec: Recording) -> tuple[np.ndarray | None, str]:
+    if rec.friction is not None:
+        return rec.friction, "friction"
+    if rec.force is not None:
+        return rec.force, "applied force"
+    return None, ""
+
+
+def sign_convention(rec: Recording) -> tuple[int, str]:
+    """+1 when friction (or the applied force while sliding) has the sign of the velocity, as
+    in the model; -1 for the opposite convention. Judged on the samples moving fastest."""
+    F, what = friction_of(rec)
+    if F is None or rec.position is None:
+        return 1, "no friction or position column: sign not checked"
+    v = velocity_of(rec)
+    fast = np.abs(v) >= np.quantile(np.abs(v), 0.8)
+    if not np.any(fast) or np.all(v[fast] == 0):
+        return 1, "no motion: sign not checked"
+    c = float(np.mean(np.sign(v[fast]) * F[fast]))
+    if c < 0:
+        return -1, f"the {what} is negative while moving forward: opposite sign convention, flipped"
+    return 1, f"the {what} has the sign of the velocity (as the model)"
+
+
+class DataTab:
+    def __init__(self, ctx: Context, gui: viser.GuiApi, panel, propose):
+        self.ctx = ctx
+        self.propose = propose
+        self.columns: list[str] = []
+        self.detected_sign = 1
+
+        # ---------------------------------------------------------------- view (right)
+        with panel.add_tab("Data"):
+            self.gui_info = gui.add_markdown("Upload a recording (left panel, **Data**): it is plotted at once, "
+                                             "then fitted.")
+            self.gui_plot = gui.add_plotly(plots.recording_figure(name="", t=np.zeros(0), position=None, friction=None,
+                                                                  friction_label="friction", units={}),
+                                           aspect=0.7, config=plot_config("recording"), visible=False)
+            self.gui_csv = gui.add_button("Save plot data (CSV)", visible=False)
+            self.gui_report = gui.add_markdown("")
+
+        # ---------------------------------------------------------------- controls (left)
+        with gui.add_folder("Data"):
+            self.gui_upload = gui.add_upload_button("Upload recording", icon=viser.Icon.UPLOAD,
+                                                    mime_type=".csv,.tsv,.txt,.dat,text/csv,text/plain",
+                                                    hint="CSV/TSV with time, position and force or friction columns")
+            self.gui_status = gui.add_markdown("")
+            self.gui_fit = gui.add_button("Fit", disabled=True, hint="fit S(v) and the transition curve: a proposal")
+            self.gui_cancel = gui.add_button("Cancel fit", visible=False, color="red")
+            self.gui_progress = gui.add_progress_bar(0.0, visible=False)
+            self.gui_columns = gui.add_folder("Columns", expand_by_default=False)
+            with self.gui_columns:
+                self.gui_map = {s: gui.add_dropdown(s, (NONE,), initial_value=NONE, hint=SIGNAL_HELP[s]) for s in MAPPED}
+                self.gui_flip = gui.add_checkbox("flip friction sign", False,
+                                                 hint="the file's friction/force has the opposite sign convention")
+                self.gui_remap = gui.add_button("Apply columns", hint="read the file again with this mapping")
+
+        self.job = JobThread(f"data-{ctx.client.client_id}", {"load": self._load, "fit": self._fit},
+                             lambda kind, e: self._failed(kind, e))
+
+        # ---------------------------------------------------------------- callbacks: set state, enqueue
+        @self.gui_upload.on_upload
+        def _(event) -> None:
+            f = self.gui_upload.value
+            with ctx.lock:
+                ctx.session.recording_name, ctx.session.recording_bytes = f.name, f.content
+                ctx.session.mapping = {}
+                ctx.session.flip_friction = None
+            self.job.submit("load", True)
+
+        @self.gui_remap.on_click
+        def _(_) -> None:
+            with ctx.lock:
+                ctx.session.mapping = {s: h.value for s, h in self.gui_map.items() if h.value != NONE}
+                ctx.session.flip_friction = self.gui_flip.value
+            self.job.submit("load", True)
+
+        @self.gui_fit.on_click
+        def _(_) -> None:
+            if not self.job.submit("fit"):
+                self.gui_status.content = "A fit is already running."
+
+        @self.gui_cancel.on_click
+        def _(_) -> None:
+            self.job.cancel()
+
+        @self.gui_csv.on_click
+        def _(event) -> None:
+            event.client.send_file_download("recording_plot.csv", plots.figure_csv(self.gui_plot.figure).encode(),
+                                            save_immediately=True)
+
+        if ctx.session.recording_bytes is not None:
+            self.job.submit("load", False)
+
+    # ------------------------------------------------------------------ jobs
+    def _failed(self, kind: str, e: Exception) -> None:
+        self._busy(False)
+        name = self.ctx.session.recording_name or "the recording"
+        self.gui_status.content = f"⚠ {kind} failed: {type(e).__name__}: {e}"
+        self.ctx.notify(f"{kind.capitalize()} failed", f"{name}: {type(e).__name__}: {e}", "red")
+
+    def _busy(self, on: bool, what: str = "") -> None:
+        self.gui_fit.disabled = on or self.ctx.recording is None
+        self.gui_upload.disabled = on
+        self.gui_remap.disabled = on
+        self.gui_cancel.visible = on
+        self.gui_progress.visible = on
+        if on:
+            self.gui_progress.value = 0.0
+            self.gui_cancel.label = f"Cancel {what}"
+
+    def _load(self, then_fit: bool) -> None:
+        ctx = self.ctx
+        s = ctx.session
+        name, content = s.recording_name, s.recording_bytes
+        self.columns = header_columns(content)
+        opts = (NONE, *self.columns)
+        for sig, h in self.gui_map.items():
+            h.options = opts
+        try:
+            rec = load_recording(content, name=name, columns=s.mapping or None, require=("time",))
+        except DataError as e:
+            msg = web_message(e, name)
+            with ctx.lock:
+                ctx.recording, ctx.fit = None, None
+            self.gui_status.content = f"⚠ {msg}"
+            self.gui_info.content = (f"**{name}** could not be read: {msg}\n\nColumns in the file: "
+                                     + ", ".join(f"`{c}`" for c in self.columns)
+                                     + "\n\nChoose the columns under **Data → Columns** (left) and press *Apply columns*.")
+            self.gui_columns.expand_by_default = True
+            self.gui_plot.visible = self.gui_csv.visible = False
+            self.gui_fit.disabled = True
+            ctx.notify("Cannot read the recording", msg, "red", 10.0)
+            ctx.changed("recording")
+            return
+        for sig, h in self.gui_map.items():
+            h.value = rec.columns.get(sig, NONE)
+        self.detected_sign, sign_note = sign_convention(rec)
+        flip = s.flip_friction if s.flip_friction is not None else self.detected_sign < 0
+        s.flip_friction = flip
+        self.gui_flip.value = flip
+        if flip:
+            rec.friction = None if rec.friction is None else -rec.friction
+            rec.force = None if rec.force is None else -rec.force
+        levels = None
+        F, what = friction_of(rec)
+        if F is not None and rec.position is not None:
+            from ...identify.segment import constant_velocity_levels
+
+            try:
+                levels = constant_velocity_levels(rec)
+            except FrictionError:
+                levels = None
+        with ctx.lock:
+            ctx.recording, ctx.fit = rec, None
+        self._show_recording(rec, levels, sign_note if not (flip and self.detected_sign > 0) else
+                             "flipped by you (the file looked like the model's convention)")
+        ctx.changed("recording")
+        can_fit = rec.position is not None and F is not None
+        self.gui_fit.disabled = not can_fit
+        if not can_fit:
+            missing = [w for w, ok in (("position", rec.position is not None), ("force or friction", F is not None)) if not ok]
+            self.gui_status.content = f"⚠ {name}: no {' and no '.join(missing)} column recognised: choose it under Columns."
+            self.gui_columns.expand_by_default = True
+            return
+        self.gui_status.content = f"**{name}**: {len(rec)} samples read."
+        if then_fit:
+            self.job.submit("fit")
+
+    def _show_recording(self, rec: Recording, levels, sign_note: str, fit=None) -> None:
+        F, what = friction_of(rec)
+        units = {"position": rec.units.get("position", "SI"), "force": rec.units.get("friction", rec.units.get("force", "SI"))}
+        curves, band = [], None
+        if fit is not None:
+            from ...model import stribeck_curve
+
+            vmax = float(np.max(np.abs(velocity_of(rec)))) if rec.position is not None else 1.0
+            v = np.linspace(-vmax, vmax, 400)
+            v = v[v != 0]
+            curves = [("fit", "proposal", v, stribeck_curve(fit.params, v))]
+            sd = plots.stribeck_band(fit.params, v)
+            if sd is not None:
+                band = (v, stribeck_curve(fit.params, v), sd)
+        fig = plots.recording_figure(name=rec.source, t=rec.time, position=rec.position, friction=F, friction_label=what,
+                                     units=units, velocity=velocity_of(rec) if rec.position is not None else None,
+                                     levels=levels, model_curves=curves, band=band)
+        rows = ["| signal | column | unit | |", "|---|---|---|---|"]
+        for sig in SIGNALS:
+            if sig in rec.columns:
+                rows.append(f"| {sig} | `{rec.columns[sig]}` | {rec.units.get(sig, '—')} | {SIGNAL_HELP.get(sig, '')} |")
+        notes = "; ".join(rec.notes)
+        self.gui_info.content = (f"**{rec.source}** — {len(rec)} samples, {rec.time[-1] - rec.time[0]:.4g} s. "
+                                 f"Recognised:\n\n" + "\n".join(rows) + f"\n\nSign: {sign_note}.  \n{notes}")
+        with self.ctx.client.atomic():
+            self.gui_plot.figure = fig
+            self.gui_plot.visible = True
+            self.gui_csv.visible = True
+
+    def _fit(self) -> None:
+        from ...identify.fit import fit_recordings
+
+        ctx = self.ctx
+        rec = ctx.recording
+        if rec is None:
+            return
+        name = ctx.session.recording_name
+        self._busy(True, "fit")
+
+        def report(frac, msg):
+            self.gui_progress.value = 100.0 * frac
+            self.gui_status.content = f"Fitting **{name}**: {msg} — {100 * frac:.0f} %"
+
+        progress = self.job.progress_for(report)
+        before = ctx.params
+        try:
+            res = fit_recordings([rec], base=before.replace(model="leuven"), progress=progress)
+        except Cancelled:
+            self.gui_status.content = f"Fit of {name} cancelled."
+            self._busy(False)
+            raise
+        except (IdentificationError, DataError) as e:
+            self._busy(False)
+            msg = web_message(e, name)
+            self.gui_status.content = f"⚠ {msg}"
+            self.gui_report.content = (f"**Nothing was fitted.** {msg}\n\nThe data are plotted above: look for "
+                                       "constant-velocity runs in both directions (for S(v)) and slow force ramps "
+                                       "with reversals (for the transition curve).")
+            ctx.notify("Fit: nothing to estimate", msg, "yellow", 10.0)
+            return
+        self._busy(False)
+        with ctx.lock:
+            ctx.fit = res
+        self._show_recording(rec, res.levels, "as read", fit=res)
+        self.gui_report.content = f"**Fit of {name}**\n\n```\n{res.report()}\n```"
+        gap_b, gap_a = gap(rec, before), gap(rec, res.params.replace(model=before.model))
+        self.propose(Proposal(f"fit of {name}", res.params.replace(model=before.model), fit_summary(res), gap_b, gap_a))
+        self.gui_status.content = f"Fit of **{name}** done: see the proposal."
+
+
+def gap(rec: Recording, p) -> float | None:
+    """RMS of measured minus simulated friction along the recording, or None where it cannot be simulated."""
+    from ...identify.diagnose import friction_signal, model_with_effects
+
+    try:
+        return float(np.sqrt(np.mean((friction_signal(rec, p) - model_with_effects(p, rec)) ** 2)))
+    except (FrictionError, ValueError, FloatingPointError):
+        return None
+
+
+def fit_summary(res) -> str:
+    """What the fit estimated and what it held, and why (from the fit result)."""
+    lines = []
+    status = getattr(res, "status", None) or getattr(res, "param_status", None)
+    if isinstance(status, dict) and status:
+        est = [k for k, v in status.items() if str(getattr(v, "status", v)).startswith("estimated")]
+        held = {k: getattr(v, "reason", "") for k, v in status.items() if not str(getattr(v, "status", v)).startswith("estimated")}
+        if est:
+            lines.append("Estimated: " + ", ".join(est))
+        if held:
+            lines.append("Held: " + "; ".join(f"{k}{f' ({r})' if r else ''}" for k, r in held.items()))
+    else:
+        lines.append("Estimated: " + ", ".join(
+            [w for w, ok in (("S(v) both sides (Markov)", res.stribeck_fit), ("transition curve (ML)", res.transition_fit))
+             if ok] or ["nothing"]))
+        held = [w for w, ok in (("S(v)", res.stribeck_fit), ("transition curve", res.transition_fit)) if not ok]
+        if held:
+            lines.append("Held at the current values: " + ", ".join(held))
+    lines += [f"- {n}" for n in res.notes]
+    return "\n\n".join(lines[:2]) + ("\n\n" + "\n".join(lines[2:]) if len(lines) > 2 else "")

@@ -1,0 +1,104 @@
+"""The Diagnose tab: look for the physical effect the model misses in the uploaded data.
+
+``identify.diagnose.diagnose`` runs in this tab's job thread with stage and percentage,
+can be cancelled, and its result is a proposal (the extended model), never an overwrite.
+"""
+
+from __future__ import annotations
+
+import viser
+
+from ...model.errors import FrictionError
+from .. import plots
+from .context import Context, Proposal, plot_config
+from .jobs import Cancelled, JobThread
+
+
+class DiagnoseTab:
+    def __init__(self, ctx: Context, gui: viser.GuiApi, panel, propose):
+        self.ctx = ctx
+        self.propose = propose
+        with panel.add_tab("Diagnose"):
+            self.gui_text = gui.add_markdown("Upload a recording, then press **Diagnose** (left): the workflow looks "
+                                             "for the physical effect the model misses, adds it and refits. The "
+                                             "result is a proposal you accept or discard.")
+            self.gui_plots = [gui.add_plotly(plots.hysteresis_figure([]), aspect=0.55, config=plot_config(f"diagnosis_{i}"),
+                                             visible=False) for i in range(4)]
+        with gui.add_folder("Diagnose"):
+            self.gui_run = gui.add_button("Diagnose", disabled=True,
+                                          hint="find the effect the current model misses in the uploaded data")
+            self.gui_cancel = gui.add_button("Cancel diagnosis", visible=False, color="red")
+            self.gui_progress = gui.add_progress_bar(0.0, visible=False)
+            self.gui_status = gui.add_markdown("")
+        self.job = JobThread(f"diagnose-{ctx.client.client_id}", {"diagnose": self._diagnose}, self._failed)
+
+        @self.gui_run.on_click
+        def _(_) -> None:
+            if not self.job.submit("diagnose"):
+                self.gui_status.content = "A diagnosis is already running."
+
+        @self.gui_cancel.on_click
+        def _(_) -> None:
+            self.job.cancel()
+
+        ctx.listeners.append(self._on_change)
+
+    def _on_change(self, reason: str) -> None:
+        if reason == "recording" and not self.job.busy():
+            rec = self.ctx.recording
+            self.gui_run.disabled = rec is None or rec.position is None
+
+    def _busy(self, on: bool) -> None:
+        self.gui_run.disabled = on
+        self.gui_cancel.visible = on
+        self.gui_progress.visible = on
+        if on:
+            self.gui_progress.value = 0.0
+
+    def _failed(self, kind: str, e: Exception) -> None:
+        self._busy(False)
+        self.gui_status.content = f"⚠ diagnosis failed: {e}"
+        self.ctx.notify("Diagnosis failed", f"{self.ctx.session.recording_name}: {type(e).__name__}: {e}", "red")
+
+    def _diagnose(self) -> None:
+        from ...identify.diagnose import diagnose
+
+        ctx = self.ctx
+        rec = ctx.recording
+        if rec is None:
+            self.gui_status.content = "Upload a recording first."
+            return
+        name = ctx.session.recording_name
+        before = ctx.params
+        self._busy(True)
+
+        def report(frac, msg):
+            self.gui_progress.value = 100.0 * frac
+            self.gui_status.content = f"Diagnosing **{name}**: {msg} — {100 * frac:.0f} %"
+
+        try:
+            d = diagnose(rec, before.replace(model="leuven"), progress=self.job.progress_for(report))
+        except Cancelled:
+            self._busy(False)
+            self.gui_status.content = "Diagnosis cancelled."
+            raise
+        except FrictionError as e:
+            self._busy(False)
+            msg = str(e) if name in str(e) else f"{name}: {e}"
+            self.gui_status.content = f"⚠ {msg}"
+            ctx.notify("Diagnosis failed", msg, "red")
+            return
+        self._busy(False)
+        with ctx.client.atomic():
+            self.gui_text.content = f"**Diagnosis of {name}**\n\n```\n{d.text()}\n```"
+            for handle, fig in zip(self.gui_plots, plots.diagnosis_figures(d)):
+                handle.figure = fig
+                handle.visible = True
+        if d.effect:
+            text = (f"Effect **{d.effect}**: {d.description}.\n\nPer regime (RMS before → after): "
+                    + "; ".join(f"{k} {r['rms_before']:.3g} → {r['rms_after']:.3g}" for k, r in d.regimes.items()))
+            self.propose(Proposal(f"diagnosis: {d.effect}", d.params_after.replace(model=before.model), text,
+                                  d.rms_before, d.rms_after))
+            self.gui_status.content = f"Found **{d.effect}**: see the proposal."
+        else:
+            self.gui_status.content = "No significant missing effect: the model explains the data (nothing proposed)."
