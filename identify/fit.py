@@ -59,6 +59,23 @@ def _merge_levels(parts: list[Levels]) -> Levels:
     return Levels(*(np.concatenate([getattr(p, k) for p in parts]) for k in ("velocity", "friction", "variance", "count")))
 
 
+MAX_BRANCHES, MAX_POINTS = 10, 100
+
+
+def _thin(branches):
+    """At most MAX_BRANCHES branches per data set (the longest) and MAX_POINTS samples per
+    branch (evenly spaced, the reversal kept): the likelihood stays a likelihood of the
+    samples used, and its cost stays bounded on long recordings."""
+    keep = sorted(branches, key=lambda b: -np.ptp(b.displacement))[:MAX_BRANCHES]
+    out = []
+    for b in keep:
+        if len(b.force) > MAX_POINTS:
+            idx = np.unique(np.linspace(0, len(b.force) - 1, MAX_POINTS).astype(int))
+            b = type(b)(force=b.force[idx], displacement=b.displacement[idx], D=b.D, driven=b.driven)
+        out.append(b)
+    return out
+
+
 def check_n(n) -> float:
     try:
         x = float(n)
@@ -194,6 +211,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                          f"no reversals of a prescribed motion with measured friction)")
         else:
             notes.append(f"{pr.source}: {len(fb)} force-driven and {len(mb)} motion-driven presliding branch(es)")
+    for d in datasets:
+        d.branches = _thin(d.branches)
     n_br = sum(len(d.branches) for d in datasets)
     tfit = None
     if n_br:

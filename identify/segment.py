@@ -386,7 +386,7 @@ def force_branches(prep: Prepared, Fs_pos: float, Fs_neg: float, v_max: float, *
     return out
 
 
-def motion_branches(prep: Prepared, *, min_points: int = 10) -> list[Branch]:
+def motion_branches(prep: Prepared, *, min_points: int = 5) -> list[Branch]:
     """Reversals of a prescribed motion with measured friction. After each reversal (a
     position extremum confirmed by ``x_turn``) the friction crosses from the old sliding
     level F_b towards the new one; the crossing, up to 90 % of the way, is one branch with
