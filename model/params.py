@@ -179,11 +179,20 @@ def _number(path: str, value) -> float:
     except (TypeError, ValueError):
         raise ParameterError(f"{path}: expected a number, got {value!r}"[:200]) from None
     except OverflowError:  # an integer beyond the float range (YAML reads `n: 1000…0` as int)
-        digits = int(abs(int(value)).bit_length() * math.log10(2)) + 1 if isinstance(value, int) else None
-        raise ParameterError(f"{path}: number too large" + (f" ({digits} digits)" if digits else "")) from None
+        raise ParameterError(f"{path}: number too large{_digits(value)}") from None
     if not math.isfinite(x):
         raise ParameterError(f"{path}: must be finite, got {value!r}")
     return x
+
+
+def _digits(value) -> str:
+    """ (N digits) of a huge integer, for the message."""
+    if not isinstance(value, int):
+        return ""
+    try:
+        return f" ({len(str(abs(value)))} digits)"
+    except ValueError:  # beyond the interpreter's limit for int -> str
+        return f" (about {int(abs(value).bit_length() * math.log10(2)) + 1} digits)"
 
 
 _finite = _number  # older name, kept for callers

@@ -1,0 +1,151 @@
+"""The bad-input cases of the README's table that this part of the package answers: each is
+exit status 2, one line naming the option, file or field, and nothing written. The command line
+runs in-process through ``main(argv)``. (The loader and fit cases are in
+tests/unit/test_fit_recordings.py.)"""
+
+import os
+import socket
+
+import pytest
+import yaml
+
+from leuven_friction.app import cli as cli_module
+from leuven_friction.app.cli import main
+from leuven_friction.model import default_params
+
+SAMPLE = os.path.join(os.path.dirname(__file__), "..", "..", "sample_data", "constant_velocity.csv")
+
+
+def run(capsys, *args):
+    rc = main([str(a) for a in args])
+    out = capsys.readouterr()
+    return rc, out.out, out.err
+
+
+def one_line(err: str) -> str:
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert "Traceback" not in err
+    return lines[0]
+
+
+def param_file(tmp_path, change=None, remove=(), text=None):
+    path = tmp_path / "p.yaml"
+    if text is None:
+        d = default_params().to_dict()
+        d.update(change or {})
+        for k in remove:
+            d.pop(k)
+        text = yaml.safe_dump(d)
+    path.write_text(text)
+    return path
+
+
+# -- output paths: refused before the work, nothing left behind ---------------------------------
+@pytest.mark.parametrize("command", [
+    ["fit", SAMPLE, "--out", "{nodir}/p.yaml"],
+    ["diagnose", SAMPLE, "--json", "{tmp}/ok.json", "--html", "{nodir}/r.html"],
+    ["diagnose", SAMPLE, "--out", "{nodir}/p.yaml"],
+    ["bench", "--quick", "--json", "{nodir}/b.json"],
+    ["simulate", "--experiment", "abcd_ramp", "--out", "{nodir}/x.csv"],
+])
+def test_output_in_a_missing_directory_is_refused_before_the_work(tmp_path, capsys, command):
+    argv = [a.format(tmp=tmp_path, nodir=tmp_path / "nodir") for a in command]
+    rc, _, err = run(capsys, *argv)
+    assert rc == 2
+    assert one_line(err).endswith(f"directory {tmp_path / 'nodir'} does not exist")
+    assert os.listdir(tmp_path) == []  # in particular no ok.json beside the refused report
+
+
+def test_output_that_is_read_only_or_a_directory(tmp_path, capsys):
+    ro = tmp_path / "ro.yaml"
+    ro.write_text("keep me")
+    ro.chmod(0o444)
+    rc, _, err = run(capsys, "fit", SAMPLE, "--out", ro)
+    assert rc == 2 and one_line(err) == f"error: --out {ro}: the file is read-only"
+    assert ro.read_text() == "keep me"
+    rc, _, err = run(capsys, "fit", SAMPLE, "--out", tmp_path)
+    assert rc == 2 and "is a directory" in one_line(err)
+
+
+# -- parameter files ------------------------------------------------------------------------------
+def test_huge_integer_in_a_parameter_file(tmp_path, capsys):
+    p = param_file(tmp_path, text=yaml.safe_dump(default_params().to_dict()).replace("n: 7.0", "n: " + "9" * 401))
+    rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--params", p, "--out", tmp_path / "o.csv")
+    assert rc == 2 and one_line(err) == f"error: {p}: n: number too large (401 digits)"
+    assert not (tmp_path / "o.csv").exists()
+
+
+def test_parameter_file_without_stribeck(tmp_path, capsys):
+    p = param_file(tmp_path, remove=("stribeck",))
+    rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--params", p, "--out", tmp_path / "o.csv")
+    assert rc == 2 and one_line(err).startswith(f"error: {p}: stribeck: missing")
+
+
+@pytest.mark.parametrize("text", ["", "\n\n", "# only a comment\n"])
+def test_empty_parameter_file(tmp_path, capsys, text):
+    p = param_file(tmp_path, text=text)
+    rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--params", p, "--out", tmp_path / "o.csv")
+    assert rc == 2 and one_line(err).startswith(f"error: {p}: the file is empty")
+
+
+def test_ten_thousand_knots_are_refused(tmp_path, capsys):
+    knots = {"kind": "piecewise_linear", "z": [i * 1e-6 for i in range(10_000)], "F": [float(i) for i in range(10_000)]}
+    p = param_file(tmp_path, change={"transition_curve": knots})
+    rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--params", p, "--out", tmp_path / "o.csv")
+    assert rc == 2 and one_line(err) == f"error: {p}: transition_curve.z: 10000 knots, at most 64 are accepted"
+
+
+def test_parameter_file_in_other_units_needs_its_dimensioned_fields(tmp_path, capsys):
+    # the paper's σ1 = 1500 N·m·s/rad must not slip silently into a file in m and N
+    p = param_file(tmp_path, change={"units": {"position": "m", "force": "N", "time": "s"}}, remove=("sigma1",))
+    rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--params", p, "--out", tmp_path / "o.csv")
+    assert rc == 2 and "sigma1: missing" in one_line(err)
+
+
+# -- server start-up ------------------------------------------------------------------------------
+@pytest.fixture
+def no_server(monkeypatch):
+    """Record the call instead of serving forever (the checks under test all run before it)."""
+    calls = []
+    import leuven_friction.app.server as server
+
+    monkeypatch.setattr(server, "serve", lambda *a, **kw: calls.append(kw))
+    return calls
+
+
+def test_port_out_of_range(capsys, no_server):
+    rc, _, err = run(capsys, "serve", "--port", "99999")
+    assert rc == 2 and one_line(err) == "error: --port 99999: must be between 0 and 65535 (0 picks a free port)"
+    assert no_server == []
+
+
+def test_host_that_does_not_resolve(capsys, no_server):
+    rc, _, err = run(capsys, "serve", "--host", "example.invalid")
+    assert rc == 2 and one_line(err).startswith("error: --host example.invalid: ")
+    assert no_server == []
+
+
+def test_taken_port_is_named(capsys, no_server):
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        s.listen()
+        port = s.getsockname()[1]
+        rc, _, err = run(capsys, "serve", "--port", port)
+    assert rc == 2 and one_line(err).startswith(f"error: --port {port}: already in use on 127.0.0.1")
+    assert no_server == []
+
+
+def test_host_reachable_from_the_network_is_warned_about(capsys, no_server):
+    rc, _, err = run(capsys, "serve", "--host", "0.0.0.0", "--port", "0")
+    assert rc == 0 and no_server and no_server[0]["host"] == "0.0.0.0"
+    assert "reachable from the network" in one_line(err) and "without authentication" in err
+    rc, _, err = run(capsys, "serve", "--port", "0")
+    assert rc == 0 and err == ""
+
+
+def test_cli_turns_only_user_errors_into_one_line(monkeypatch):
+    # a bug stays a bug: anything but a FrictionError propagates with its traceback
+    monkeypatch.setattr(cli_module, "cmd_bench", lambda args: 1 / 0)
+    with pytest.raises(ZeroDivisionError):
+        main(["bench", "--quick"])
