@@ -214,6 +214,8 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
         return SideDecision(fit, held, "Coulomb + viscous")
     fit = _coulomb_viscous(levels, sign, viscous=False)
     fit.values["vs"], fit.values["delta"] = vs_hold, delta_hold
+    fit.notes.append(f"Fc is the sliding friction measured at |v| = {abs(vs_hold):.3g} only (S(v) + σ2·v there); it equals "
+                     f"the Coulomb friction only if that speed is well above the Stribeck velocity and σ2·v is small")
     held = {"Fs": f"{why}: held at Fc", "vs": f"{why}: held at the slowest level's speed",
             "delta": f"{why}: held at {delta_hold:g}", "sigma2": f"{why}; the levels do not span enough speeds: held at 0"}
     return SideDecision(fit, held, "Coulomb")

@@ -169,3 +169,20 @@ def test_knots_closer_than_the_resolution_are_refused():
     rec = load_recording("sample_data/presliding_encoder.csv")
     with pytest.raises(IdentificationError, match="knots"):
         fit_recordings([rec], knots=[0.0, 1e-12, 2e-12, 1e-4], refine=False)
+
+
+@pytest.mark.parametrize("kind", ["robot_joint", "tribometer"])
+def test_output_error_refinement_lowers_the_residual_and_keeps_the_truth(kind):
+    """Force-driven (robot joint: position simulated from the applied torque) and
+    motion-driven (tribometer: friction simulated along the position) refinement."""
+    df, truth = make_recording(kind, 2)
+    res = fit_recordings([_rec(df, f"{kind}.csv")])
+    rf = res.refinement
+    assert rf["done"], rf
+    for k, before in rf["per_experiment_before"].items():
+        assert rf["per_experiment_after"][k] < before
+    if kind == "robot_joint":
+        # the simulated position closes down to the encoder's quantisation noise (step/√12)
+        step = truth.noise["encoder_step"]
+        assert list(rf["per_experiment_after"].values())[0] < 2.0 * step / np.sqrt(12)
+    _check_against_truth(res, truth)
