@@ -100,13 +100,9 @@ def parse_column_mapping(spec: str | None) -> dict:
 def _read_table(path: Path, text: str) -> pd.DataFrame:
     """Guess the separator from the header (the first line that is not a ``#`` comment):
     tab, semicolon (European CSV: then a comma is the decimal mark), comma, or whitespace."""
-    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
-    first = lines[0] if lines else ""
-    counts = {"\t": first.count("\t"), ";": first.count(";"), ",": first.count(",")}
-    sep = max(counts, key=counts.get) if max(counts.values()) > 0 else r"\s+"
-    decimal = "."
-    if sep == ";" and len(lines) > 1 and re.search(r"\d,\d", lines[1]):
-        decimal = ","
+    from .io import sniff  # the one guess, shared with the reader of files
+
+    sep, decimal = sniff(text.splitlines())
     try:
         return pd.read_csv(io.StringIO(text), sep=sep, engine="c" if sep != r"\s+" else "python", comment="#",
                            skip_blank_lines=True, decimal=decimal)
@@ -133,15 +129,15 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         text, path = source, Path(name)
     else:
         path = Path(source)
-        try:
-            text = path.read_text(encoding="utf-8-sig")
-        except OSError as e:
-            raise DataError(f"{path}: cannot read ({e.strerror})") from None
-        except UnicodeDecodeError:
-            raise DataError(f"{path}: not a text file (could not decode as UTF-8)") from None
-    if not text.strip():
+        text = None  # read straight from the file by identify.io: CSV/TSV, Parquet or MATLAB .mat
+    if text is not None and not text.strip():
         raise DataError(f"{path}: the file is empty")
-    df = _read_table(path, text)
+    if text is None:
+        from .io import read_table_file
+
+        df = read_table_file(path)
+    else:
+        df = _read_table(path, text)
     if df.shape[1] == 0 or len(df) == 0:
         raise DataError(f"{path}: no data rows under the header")
 

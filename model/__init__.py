@@ -2,30 +2,35 @@
 Al-Bender, Ganseman, Prajogo), LuGre and the static Coulomb + viscous + Stribeck model.
 
 Pure computation: no file I/O, no user interface, no imports from ``identify`` or ``app``.
+
+The names below are imported on first use (PEP 562): ``from leuven_friction.model.errors
+import ...`` or ``.layout`` must not pay for numba, so that the command line starts at once.
 """
 
-from .errors import FrictionError, ParameterError, SignalError
-from .params import (
-    FrictionParams,
-    Stribeck,
-    StribeckSide,
-    TransitionCurve,
-    as_model,
-    default_params,
-)
-from .simulate import (
-    COLUMNS,
-    SimResult,
-    initial_state,
-    simulate_closed_loop,
-    simulate_displacement,
-    simulate_force,
-    stribeck_curve,
-    transition_curve_values,
-)
+from __future__ import annotations
 
-__all__ = [
-    "COLUMNS", "FrictionError", "FrictionParams", "ParameterError", "SignalError", "SimResult", "Stribeck", "StribeckSide", "TransitionCurve",
-    "as_model", "default_params", "initial_state", "simulate_closed_loop", "simulate_displacement",
-    "simulate_force", "stribeck_curve", "transition_curve_values",
-]
+import importlib
+
+_WHERE = {
+    "FrictionError": "errors", "ParameterError": "errors", "SignalError": "errors",
+    "FrictionParams": "params", "Stribeck": "params", "StribeckSide": "params", "TransitionCurve": "params",
+    "as_model": "params", "default_params": "params",
+    "COLUMNS": "simulate", "SimResult": "simulate", "initial_state": "simulate",
+    "simulate_closed_loop": "simulate", "simulate_displacement": "simulate", "simulate_force": "simulate",
+    "stribeck_curve": "simulate", "transition_curve_values": "simulate",
+}
+
+__all__ = sorted(_WHERE)
+
+
+def __getattr__(name: str):
+    mod = _WHERE.get(name)
+    if mod is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{mod}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

@@ -9,14 +9,12 @@ The kernels take plain float64 arrays; this module says what lives where in them
     each of capacity ``(len(st) - HEADER) // 2``;
 ``State``  a read-only view of a state vector by name, for code outside the kernels.
 
-No numba here: the command line imports this without paying for the compiler.
+No numba or numpy at import: the command line imports this at start-up.
 """
 
 from __future__ import annotations
 
 from enum import IntEnum
-
-import numpy as np
 
 
 class ModelKind(IntEnum):
@@ -70,8 +68,10 @@ S_SV = 10  # S(v) of the last step (reused by the plant's linearisation)
 HEADER = 11
 
 
-def new_state(cap: int = 64) -> np.ndarray:
+def new_state(cap: int = 64):
     """A zeroed state vector whose stacks each hold ``cap`` extrema."""
+    import numpy as np  # here, not at the top: the command line imports this module at start-up
+
     if cap < 2:
         raise ValueError(f"stack capacity must be >= 2, got {cap}")
     return np.zeros(HEADER + 2 * cap)
@@ -83,7 +83,7 @@ class State:
 
     __slots__ = ("array",)
 
-    def __init__(self, array: np.ndarray):
+    def __init__(self, array):
         self.array = array
 
     @property

@@ -1,0 +1,249 @@
+"""Tables in and out at the speed of the formats' libraries, with bounded memory.
+
+Readers (``read_table_file``) take a path and return a DataFrame of the file's columns:
+
+* CSV/TSV: the dialect (separator, decimal mark) is guessed from the first lines only
+  (``sniff``), then pandas' C parser reads straight from the file, so a big recording is
+  never held as one Python string (nor as the 4-byte-per-character copy ``io.StringIO``
+  makes of it); ``usecols`` keeps only the columns asked for.
+* Parquet (``.parquet``, ``.pq``; optional extra ``pyarrow``): only the columns asked for
+  are read.
+* MATLAB ``.mat`` (``scipy.io.loadmat``, files up to v7; v7.3 is HDF5 and is refused with a
+  note): every numeric vector of the file's common length becomes a column, named as the
+  variable (``struct.field`` for fields of a struct, ``name_1``, ``name_2``, … for the columns
+  of a matrix).
+
+Writers (``write_table``) take named columns of equal length: CSV in ``%.10g`` (the format the
+command line has always written), a block of rows at a time, by a compiled formatter
+(``identify.csvformat``) for float columns, else by one C-level string format of the block
+instead of one Python call per value; Parquet through pyarrow.
+
+Every problem a user can cause is a ``DataError`` naming the file.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Callable, Iterable
+
+import numpy as np
+
+from .errors import DataError
+
+PARQUET_SUFFIXES = (".parquet", ".pq")
+MAT_SUFFIXES = (".mat",)
+SNIFF_BYTES = 1 << 16
+CSV_FORMAT = "%.10g"
+CSV_BLOCK_ROWS = 65536
+
+
+def table_format(path) -> str:
+    """'parquet', 'mat' or 'csv', from the file name's suffix."""
+    suffix = Path(path).suffix.lower()
+    if suffix in PARQUET_SUFFIXES:
+        return "parquet"
+    if suffix in MAT_SUFFIXES:
+        return "mat"
+    return "csv"
+
+
+# ---------------------------------------------------------------- CSV dialect
+def sniff(lines: Iterable[str]) -> tuple[str, str]:
+    """(separator, decimal mark) from the first lines of a table: the separator is the most
+    frequent of tab, semicolon and comma in the header (the first line that is not blank or a
+    ``#`` comment), else whitespace; a semicolon table whose first data line has a digit,
+    comma, digit uses the decimal comma (European CSV)."""
+    rows = [ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")]
+    first = rows[0] if rows else ""
+    counts = {"\t": first.count("\t"), ";": first.count(";"), ",": first.count(",")}
+    sep = max(counts, key=counts.get) if max(counts.values()) > 0 else r"\s+"
+    decimal = "."
+    if sep == ";" and len(rows) > 1 and re.search(r"\d,\d", rows[1]):
+        decimal = ","
+    return sep, decimal
+
+
+def _head_text(path: Path) -> str:
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(SNIFF_BYTES)
+    except OSError as e:
+        raise DataError(f"{path}: cannot read ({e.strerror})") from None
+    if b"\0" in head:
+        raise DataError(f"{path}: not a text file (it contains NUL bytes)")
+    try:
+        text = head.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        if e.start < len(head) - 4:  # not just a character cut at the end of the sniffed block
+            raise DataError(f"{path}: not a text file (could not decode as UTF-8)") from None
+        text = head[: e.start].decode("utf-8-sig")
+    return text
+
+
+def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
+    import pandas as pd
+
+    text = _head_text(path)
+    if not text.strip():
+        raise DataError(f"{path}: the file is empty")
+    lines = text.splitlines()
+    if len(text) == SNIFF_BYTES and len(lines) > 1:
+        lines = lines[:-1]  # the last line of the block may be cut
+    sep, decimal = sniff(lines)
+    try:
+        return pd.read_csv(path, sep=sep, engine="c" if sep != r"\s+" else "python", comment="#",
+                           skip_blank_lines=True, decimal=decimal, encoding="utf-8-sig", usecols=usecols)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
+        msg = str(e).splitlines()[0] if str(e) else type(e).__name__
+        raise DataError(f"{path}: not a readable CSV/TSV table ({msg})") from None
+    except OSError as e:
+        raise DataError(f"{path}: cannot read ({e.strerror})") from None
+
+
+# ---------------------------------------------------------------- Parquet
+def _pyarrow(what: str):
+    try:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+    except ImportError:
+        raise DataError(f"{what}: Parquet needs the optional dependency pyarrow "
+                        "(pip install 'leuven-friction[parquet]')") from None
+    return pa, pq
+
+
+def read_parquet_file(path: Path, usecols: Callable[[str], bool] | None = None):
+    pa, pq = _pyarrow(str(path))
+    try:
+        schema = pq.read_schema(path)
+        names = [n for n in schema.names if usecols is None or usecols(n)]
+        table = pq.read_table(path, columns=names)
+    except OSError as e:
+        raise DataError(f"{path}: cannot read ({getattr(e, 'strerror', None) or str(e).splitlines()[0]})") from None
+    except (pa.ArrowInvalid, pa.ArrowNotImplementedError) as e:
+        raise DataError(f"{path}: not a readable Parquet file ({str(e).splitlines()[0]})") from None
+    return table.to_pandas()
+
+
+# ---------------------------------------------------------------- MATLAB
+def read_mat_file(path: Path, usecols: Callable[[str], bool] | None = None):
+    import pandas as pd
+    import scipy.io
+
+    try:
+        data = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)
+    except NotImplementedError:
+        raise DataError(f"{path}: a MATLAB v7.3 (HDF5) file; save it with -v7 or export a CSV") from None
+    except (ValueError, TypeError, OSError) as e:
+        raise DataError(f"{path}: not a readable MATLAB .mat file ({str(e).splitlines()[0]})") from None
+    columns: dict[str, np.ndarray] = {}
+
+    def add(name: str, value) -> None:
+        if hasattr(value, "_fieldnames"):  # a struct: its fields, dotted
+            for f in value._fieldnames:
+                add(f"{name}.{f}", getattr(value, f))
+            return
+        a = np.asarray(value)
+        if a.dtype.kind not in "fiub" or a.size < 2:
+            return
+        if a.ndim == 1:
+            columns[name] = a.astype(np.float64)
+        elif a.ndim == 2:  # one column per signal (a row-per-sample matrix) or per sample
+            m = a if a.shape[0] >= a.shape[1] else a.T
+            for j in range(m.shape[1]):
+                columns[f"{name}_{j + 1}"] = m[:, j].astype(np.float64)
+
+    for name, value in data.items():
+        if not name.startswith("__"):
+            add(name, value)
+    if not columns:
+        raise DataError(f"{path}: no numeric vectors in the .mat file")
+    lengths = {}
+    for name, a in columns.items():
+        lengths.setdefault(len(a), []).append(name)
+    n = max(lengths, key=lambda k: (len(lengths[k]), k))  # the length most vectors share
+    keep = {k: v for k, v in columns.items() if len(v) == n and (usecols is None or usecols(k))}
+    return pd.DataFrame(keep)
+
+
+def read_table_file(path, usecols: Callable[[str], bool] | None = None):
+    """The table in ``path`` as a DataFrame (CSV/TSV, Parquet or .mat by suffix); ``usecols``
+    keeps only the columns for which it is true."""
+    path = Path(path)
+    if not path.exists():
+        raise DataError(f"{path}: cannot read (No such file or directory)")
+    if path.is_dir():
+        raise DataError(f"{path}: is a directory, not a recording")
+    fmt = table_format(path)
+    if fmt == "parquet":
+        return read_parquet_file(path, usecols)
+    if fmt == "mat":
+        return read_mat_file(path, usecols)
+    return read_csv_file(path, usecols)
+
+
+# ---------------------------------------------------------------- writers
+def _columns(columns: dict) -> tuple[list[str], list[np.ndarray], int]:
+    names = list(columns)
+    arrays = [np.asarray(columns[c]) for c in names]
+    n = len(arrays[0]) if arrays else 0
+    for c, a in zip(names, arrays):
+        if a.ndim != 1 or len(a) != n:
+            raise ValueError(f"column {c!r}: expected {n} values in one dimension, got shape {a.shape}")
+    return names, arrays, n
+
+
+def csv_blocks(columns: dict, fmt: str = CSV_FORMAT, block_rows: int = CSV_BLOCK_ROWS):
+    """The CSV text of ``columns`` (header first) in encoded blocks of ``block_rows`` rows.
+
+    Floats are written with ``fmt`` (the bytes ``'%.10g' % value`` gives, as pandas'
+    ``float_format`` does), strings as they are. Each block is one ``%`` formatting of a
+    row template repeated over the block, which runs in C: no Python call per value."""
+    names, arrays, n = _columns(columns)
+    yield (",".join(names) + "\n").encode()
+    kinds = ["s" if a.dtype.kind in "OUS" else "f" for a in arrays]
+    if fmt == CSV_FORMAT and "s" not in kinds:
+        from .csvformat import rows_bytes  # compiled, the same bytes
+
+        for a0 in range(0, n, block_rows):
+            yield rows_bytes(np.column_stack([a[a0 : a0 + block_rows] for a in arrays]))
+        return
+    row = ",".join("%s" if k == "s" else fmt for k in kinds) + "\n"
+    for a0 in range(0, n, block_rows):
+        a1 = min(n, a0 + block_rows)
+        m = a1 - a0
+        cols = []
+        for a, k in zip(arrays, kinds):
+            part = a[a0:a1]
+            cols.append(part.astype(str) if k == "s" else part.astype(np.float64, copy=False))
+        if all(k == "f" for k in kinds):
+            flat = np.column_stack(cols).ravel().tolist()
+        else:
+            obj = np.empty((m, len(cols)), dtype=object)
+            for j, c in enumerate(cols):
+                obj[:, j] = c.tolist()
+            flat = obj.ravel().tolist()
+        yield ((row * m) % tuple(flat)).encode()
+
+
+def write_csv(columns: dict, path) -> None:
+    with open(path, "wb") as fh:
+        for block in csv_blocks(columns):
+            fh.write(block)
+
+
+def write_parquet(columns: dict, path) -> None:
+    pa, pq = _pyarrow(str(path))
+    names, arrays, _ = _columns(columns)
+    pq.write_table(pa.table({c: a for c, a in zip(names, arrays)}), path)
+
+
+def write_table(columns: dict, path, fmt: str | None = None) -> None:
+    """Write ``columns`` to ``path`` as CSV or Parquet (``fmt``, else by the file's suffix)."""
+    fmt = fmt or table_format(path)
+    if fmt == "parquet":
+        write_parquet(columns, path)
+    elif fmt == "csv":
+        write_csv(columns, path)
+    else:
+        raise DataError(f"{path}: cannot write {fmt} files; use .csv or .parquet")
