@@ -53,11 +53,12 @@ def check_output_path(path: str | os.PathLike, option: str = "output") -> Path:
 class Outputs:
     """All the output files of one command; see the module docstring."""
 
-    def __init__(self, paths: dict):
-        """``paths``: {option name: path or None}; the None ones are not asked for."""
+    def __init__(self, paths):
+        """``paths``: {option name: path or None} (or (option, path) pairs, when one option
+        names several files); the None ones are not asked for."""
         self._option = {}
         seen = {}
-        for option, path in paths.items():
+        for option, path in (paths.items() if isinstance(paths, dict) else paths):
             if path is None:
                 continue
             p = check_output_path(path, option)
@@ -76,6 +77,24 @@ class Outputs:
             self.commit()
         else:
             self.discard()
+
+    def stage(self, path: str | os.PathLike) -> Path:
+        """An empty temporary file beside ``path`` for a writer that streams (a big CSV, a
+        Parquet file); renamed into place with the others on leaving the block."""
+        p = Path(path)
+        option = self._option.get(os.path.realpath(p))
+        if option is None:
+            raise RuntimeError(f"{path}: not declared as an output of this command")  # a bug, not a user error
+        try:
+            fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".part", dir=p.parent)
+            os.close(fd)
+        except OSError as e:
+            raise OutputError(f"{option} {path}: cannot write ({e.strerror})") from None
+        self._staged.append((tmp, p))
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; an output file gets the usual mode
+        return Path(tmp)
 
     def write_text(self, path: str | os.PathLike, text: str) -> None:
         self.write_bytes(path, text.encode("utf-8"))

@@ -63,10 +63,10 @@ class Explorer:
         panel.dock_right()
         panel.set_width(VIEW_WIDTH)
         self.panel = panel
-        gui.add_html(STYLE)
-        gui.add_markdown("**Leuven friction model** — eqs. (3)–(7) of Swevers et al.")
-        self.gui_session = gui.add_markdown(self._session_note(restored, why, session))
-        self.gui_message = gui.add_markdown("")
+        gui.add_html(STYLE, order=1000)
+        gui.add_markdown("**Leuven friction model** — eqs. (3)–(7) of Swevers et al.", order=0.0)
+        self.gui_session = gui.add_markdown(self._session_note(restored, why, session), order=0.1)
+        self.gui_message = gui.add_markdown("", order=0.2)
         ctx.status = lambda text: setattr(self.gui_message, "content", text)
 
         # ---------------------------------------------------------------- tabs, top to bottom

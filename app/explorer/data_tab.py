@@ -33,7 +33,7 @@ def web_message(e: Exception, name: str) -> str:
     """A loader's message for a web user: names the file, points at the column dropdowns
     instead of the command line's ``--columns``."""
     msg = str(e)
-    msg = re.sub(r";?\s*name (it|them) with --columns[^)]*", "; choose it under Data → Columns", msg)
+    msg = re.sub(r";?\s*name (it|them) with --columns[^)]*", "; choose it under Columns in the Data tab", msg)
     msg = msg.replace("--columns", "the column dropdowns")
     return msg if name in msg else f"{name}: {msg}"
 
@@ -65,33 +65,24 @@ def friction_of(rec: Recording) -> tuple[np.ndarray | None, str]:
     return None, ""
 
 
-def sign_convention(rec: Recording) -> tuple[int, str]:
-    """+1 when friction (or the applied force while sliding) has the sign of the velocity, as
-    in the model; -1 for the opposite convention. Judged on the samples moving fastest."""
-    F, what = friction_of(rec)
-    if F is None or rec.position is None:
-        return 1, "no friction or position column: sign not checked"
-    v = velocity_of(rec)
-    fast = np.abs(v) >= np.quantile(np.abs(v), 0.8)
-    if not np.any(fast) or np.all(v[fast] == 0):
-        return 1, "no motion: sign not checked"
-    c = float(np.mean(np.sign(v[fast]) * F[fast]))
-    if c < 0:
-        return -1, f"the {what} is negative while moving forward: opposite sign convention, flipped"
-    return 1, f"the {what} has the sign of the velocity (as the model)"
-
-
 class DataTab:
     def __init__(self, ctx: Context, gui: viser.GuiApi, panel, propose):
         self.ctx = ctx
         self.propose = propose
         self.columns: list[str] = []
-        self.detected_sign = 1
+        self.sign_note = ""
+        self._quiet = False
 
         # ---------------------------------------------------------------- view (right)
         with panel.add_tab("Data"):
             self.gui_info = gui.add_markdown("Upload a recording (left panel, **Data**): it is plotted at once, "
                                              "then fitted.")
+            self.gui_columns = gui.add_folder("Columns: which column is which signal", visible=False)
+            with self.gui_columns:
+                self.gui_map = {s: gui.add_dropdown(s, (NONE,), initial_value=NONE, hint=SIGNAL_HELP[s]) for s in MAPPED}
+                self.gui_flip = gui.add_checkbox("flip friction sign", False,
+                                                 hint="the file's friction/force has the opposite sign convention")
+                self.gui_remap = gui.add_button("Apply columns", hint="read the file again with this mapping")
             self.gui_plot = gui.add_plotly(plots.recording_figure(name="", t=np.zeros(0), position=None, friction=None,
                                                                   friction_label="friction", units={}),
                                            aspect=0.7, config=plot_config("recording"), visible=False)
@@ -99,7 +90,7 @@ class DataTab:
             self.gui_report = gui.add_markdown("")
 
         # ---------------------------------------------------------------- controls (left)
-        with gui.add_folder("Data"):
+        with gui.add_folder("Data", order=2.0):
             self.gui_upload = gui.add_upload_button("Upload recording", icon=viser.Icon.UPLOAD,
                                                     mime_type=".csv,.tsv,.txt,.dat,text/csv,text/plain",
                                                     hint="CSV/TSV with time, position and force or friction columns")
@@ -107,12 +98,6 @@ class DataTab:
             self.gui_fit = gui.add_button("Fit", disabled=True, hint="fit S(v) and the transition curve: a proposal")
             self.gui_cancel = gui.add_button("Cancel fit", visible=False, color="red")
             self.gui_progress = gui.add_progress_bar(0.0, visible=False)
-            self.gui_columns = gui.add_folder("Columns", expand_by_default=False)
-            with self.gui_columns:
-                self.gui_map = {s: gui.add_dropdown(s, (NONE,), initial_value=NONE, hint=SIGNAL_HELP[s]) for s in MAPPED}
-                self.gui_flip = gui.add_checkbox("flip friction sign", False,
-                                                 hint="the file's friction/force has the opposite sign convention")
-                self.gui_remap = gui.add_button("Apply columns", hint="read the file again with this mapping")
 
         self.job = JobThread(f"data-{ctx.client.client_id}", {"load": self._load, "fit": self._fit},
                              lambda kind, e: self._failed(kind, e))
@@ -131,8 +116,12 @@ class DataTab:
         def _(_) -> None:
             with ctx.lock:
                 ctx.session.mapping = {s: h.value for s, h in self.gui_map.items() if h.value != NONE}
-                ctx.session.flip_friction = self.gui_flip.value
             self.job.submit("load", True)
+
+        @self.gui_flip.on_update
+        def _(_) -> None:
+            if not self._quiet:  # the user's choice, not the detected convention shown by code
+                ctx.session.flip_friction = self.gui_flip.value
 
         @self.gui_fit.on_click
         def _(_) -> None:
@@ -185,8 +174,8 @@ class DataTab:
             self.gui_status.content = f"⚠ {msg}"
             self.gui_info.content = (f"**{name}** could not be read: {msg}\n\nColumns in the file: "
                                      + ", ".join(f"`{c}`" for c in self.columns)
-                                     + "\n\nChoose the columns under **Data → Columns** (left) and press *Apply columns*.")
-            self.gui_columns.expand_by_default = True
+                                     + "\n\nChoose the columns below and press *Apply columns*.")
+            self.gui_columns.visible = True
             self.gui_plot.visible = self.gui_csv.visible = False
             self.gui_fit.disabled = True
             ctx.notify("Cannot read the recording", msg, "red", 10.0)
@@ -194,33 +183,48 @@ class DataTab:
             return
         for sig, h in self.gui_map.items():
             h.value = rec.columns.get(sig, NONE)
-        self.detected_sign, sign_note = sign_convention(rec)
-        flip = s.flip_friction if s.flip_friction is not None else self.detected_sign < 0
-        s.flip_friction = flip
-        self.gui_flip.value = flip
-        if flip:
-            rec.friction = None if rec.friction is None else -rec.friction
-            rec.force = None if rec.force is None else -rec.force
+        self.gui_columns.visible = True
+        from ...identify.segment import constant_velocity_levels, prepare
+
+        detected, sign_note = False, "no friction column: the applied force is taken as it is"
+        if rec.friction is not None and rec.position is not None:
+            try:  # the loader's own judgement of the sign convention (friction vs velocity)
+                prep = prepare(rec, friction_sign="auto")
+                detected = prep.sign_flipped
+                sign_note = next((n for n in prep.notes if n.startswith("friction sign")), sign_note)
+            except FrictionError as e:
+                sign_note = f"not checked ({e})"
+        flip = s.flip_friction if s.flip_friction is not None else detected
+        self._quiet = True
+        try:
+            self.gui_flip.value = flip
+        finally:
+            self._quiet = False
+        self.gui_flip.disabled = rec.friction is None
+        if flip and rec.friction is not None:
+            rec.friction = -rec.friction
+            if not detected:
+                sign_note = "flipped by you (the file looked like the model's convention)"
+        elif detected and rec.friction is not None:
+            sign_note = "kept as in the file by you (it looked like the opposite convention)"
         levels = None
         F, what = friction_of(rec)
         if F is not None and rec.position is not None:
-            from ...identify.segment import constant_velocity_levels
-
             try:
-                levels = constant_velocity_levels(rec)
+                levels = constant_velocity_levels(prepare(rec, friction_sign="action"))
             except FrictionError:
                 levels = None
         with ctx.lock:
             ctx.recording, ctx.fit = rec, None
-        self._show_recording(rec, levels, sign_note if not (flip and self.detected_sign > 0) else
-                             "flipped by you (the file looked like the model's convention)")
+        self.sign_note = sign_note
+        self._show_recording(rec, levels, sign_note)
         ctx.changed("recording")
         can_fit = rec.position is not None and F is not None
         self.gui_fit.disabled = not can_fit
         if not can_fit:
             missing = [w for w, ok in (("position", rec.position is not None), ("force or friction", F is not None)) if not ok]
-            self.gui_status.content = f"⚠ {name}: no {' and no '.join(missing)} column recognised: choose it under Columns."
-            self.gui_columns.expand_by_default = True
+            self.gui_status.content = (f"⚠ {name}: no {' and no '.join(missing)} column recognised: choose it "
+                                       "under *Columns* in the Data tab.")
             return
         self.gui_status.content = f"**{name}**: {len(rec)} samples read."
         if then_fit:
@@ -247,6 +251,8 @@ class DataTab:
         for sig in SIGNALS:
             if sig in rec.columns:
                 rows.append(f"| {sig} | `{rec.columns[sig]}` | {rec.units.get(sig, '—')} | {SIGNAL_HELP.get(sig, '')} |")
+            elif sig == "position" or (sig == "friction" and "force" not in rec.columns):
+                rows.append(f"| {sig} | **not found** | | choose its column below |")
         notes = "; ".join(rec.notes)
         self.gui_info.content = (f"**{rec.source}** — {len(rec)} samples, {rec.time[-1] - rec.time[0]:.4g} s. "
                                  f"Recognised:\n\n" + "\n".join(rows) + f"\n\nSign: {sign_note}.  \n{notes}")
@@ -272,12 +278,12 @@ class DataTab:
         progress = self.job.progress_for(report)
         before = ctx.params
         try:
-            res = fit_recordings([rec], base=before.replace(model="leuven"), progress=progress)
+            res = fit_recordings([rec], base=before.replace(model="leuven"), progress=progress, friction_sign="action")
         except Cancelled:
             self.gui_status.content = f"Fit of {name} cancelled."
             self._busy(False)
             raise
-        except (IdentificationError, DataError) as e:
+        except FrictionError as e:
             self._busy(False)
             msg = web_message(e, name)
             self.gui_status.content = f"⚠ {msg}"
@@ -289,40 +295,54 @@ class DataTab:
         self._busy(False)
         with ctx.lock:
             ctx.fit = res
-        self._show_recording(rec, res.levels, "as read", fit=res)
+        self._show_recording(rec, res.levels, self.sign_note, fit=res)
         self.gui_report.content = f"**Fit of {name}**\n\n```\n{res.report()}\n```"
         gap_b, gap_a = gap(rec, before), gap(rec, res.params.replace(model=before.model))
         self.propose(Proposal(f"fit of {name}", res.params.replace(model=before.model), fit_summary(res), gap_b, gap_a))
         self.gui_status.content = f"Fit of **{name}** done: see the proposal."
 
 
+def measured_friction(rec: Recording, p) -> np.ndarray:
+    """The friction column, or the applied force minus I·ẍ (eq. (8)) when only that exists."""
+    if rec.friction is not None:
+        return rec.friction
+    v = velocity_of(rec)
+    a = np.zeros_like(v)
+    a[1:] = np.diff(v) / np.diff(rec.time)
+    return rec.force - p.inertia * a
+
+
+def simulated_friction(p, rec: Recording) -> np.ndarray:
+    """The model's friction along the recorded displacement (eq. (3) driven by x(t))."""
+    from ...model import simulate_displacement
+
+    return simulate_displacement(p, rec.time, rec.position).friction_force
+
+
 def gap(rec: Recording, p) -> float | None:
     """RMS of measured minus simulated friction along the recording, or None where it cannot be simulated."""
-    from ...identify.diagnose import friction_signal, model_with_effects
-
     try:
-        return float(np.sqrt(np.mean((friction_signal(rec, p) - model_with_effects(p, rec)) ** 2)))
-    except (FrictionError, ValueError, FloatingPointError):
+        return float(np.sqrt(np.mean((measured_friction(rec, p) - simulated_friction(p, rec)) ** 2)))
+    except (FrictionError, ValueError, FloatingPointError, TypeError):
         return None
 
 
 def fit_summary(res) -> str:
     """What the fit estimated and what it held, and why (from the fit result)."""
+    held = dict(getattr(res, "held", None) or {})
+    status = res.status() if callable(getattr(res, "status", None)) else {}
+    est = sorted(k for k, v in status.items() if v == "estimated")
     lines = []
-    status = getattr(res, "status", None) or getattr(res, "param_status", None)
-    if isinstance(status, dict) and status:
-        est = [k for k, v in status.items() if str(getattr(v, "status", v)).startswith("estimated")]
-        held = {k: getattr(v, "reason", "") for k, v in status.items() if not str(getattr(v, "status", v)).startswith("estimated")}
-        if est:
-            lines.append("Estimated: " + ", ".join(est))
-        if held:
-            lines.append("Held: " + "; ".join(f"{k}{f' ({r})' if r else ''}" for k, r in held.items()))
+    if est:
+        lines.append(f"**Estimated** ({len(est)}): " + ", ".join(est))
     else:
-        lines.append("Estimated: " + ", ".join(
-            [w for w, ok in (("S(v) both sides (Markov)", res.stribeck_fit), ("transition curve (ML)", res.transition_fit))
-             if ok] or ["nothing"]))
-        held = [w for w, ok in (("S(v)", res.stribeck_fit), ("transition curve", res.transition_fit)) if not ok]
-        if held:
-            lines.append("Held at the current values: " + ", ".join(held))
-    lines += [f"- {n}" for n in res.notes]
-    return "\n\n".join(lines[:2]) + ("\n\n" + "\n".join(lines[2:]) if len(lines) > 2 else "")
+        lines.append("**Estimated**: " + ", ".join(
+            [w for w, ok in (("S(v)", res.stribeck_fit), ("transition curve", res.transition_fit)) if ok] or ["nothing"]))
+    if held:
+        lines.append(f"**Held** ({len(held)}) at the current values:\n" + "\n".join(f"- {k}: {r}" for k, r in held.items()))
+    elif not res.stribeck_fit or not res.transition_fit:
+        lines.append("**Held**: " + ", ".join(w for w, ok in (("S(v)", res.stribeck_fit),
+                                                              ("transition curve", res.transition_fit)) if not ok))
+    if res.notes:
+        lines.append("Notes:\n" + "\n".join(f"- {n}" for n in res.notes))
+    return "\n\n".join(lines)

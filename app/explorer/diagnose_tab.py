@@ -24,7 +24,7 @@ class DiagnoseTab:
                                              "result is a proposal you accept or discard.")
             self.gui_plots = [gui.add_plotly(plots.hysteresis_figure([]), aspect=0.55, config=plot_config(f"diagnosis_{i}"),
                                              visible=False) for i in range(4)]
-        with gui.add_folder("Diagnose"):
+        with gui.add_folder("Diagnose", order=3.0):
             self.gui_run = gui.add_button("Diagnose", disabled=True,
                                           hint="find the effect the current model misses in the uploaded data")
             self.gui_cancel = gui.add_button("Cancel diagnosis", visible=False, color="red")

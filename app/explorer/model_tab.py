@@ -69,7 +69,7 @@ class ModelTab:
             self.gui_csv = gui.add_button("Save plot data (CSV)", hint="the numbers behind this figure")
 
         # ---------------------------------------------------------------- controls (left)
-        with gui.add_folder("Model"):
+        with gui.add_folder("Model", order=4.0):
             self.gui_kind = gui.add_dropdown("model", ("leuven", "lugre", "static"), initial_value=ctx.params.model,
                                              hint="which friction model the plots simulate")
             self.gui_overlay = gui.add_dropdown("overlay", ("none", "lugre", "leuven", "static"),
@@ -82,15 +82,16 @@ class ModelTab:
             self.gui_warn = gui.add_markdown("")
         fields = fields_of(to_piecewise(ctx.params))
         for side in ("positive", "negative"):
-            with gui.add_folder(f"Stribeck {SIDE_MARK[side]}  (eq. 7)", expand_by_default=side == "positive"):
+            with gui.add_folder(f"Stribeck {SIDE_MARK[side]}  (eq. 7)", expand_by_default=side == "positive",
+                                order=5.0 if side == "positive" else 6.0):
                 for f in fields:
                     if f.path.startswith(f"stribeck.{side}."):
                         self._add(f)
-        with gui.add_folder("Presliding", expand_by_default=False):
+        with gui.add_folder("Presliding", expand_by_default=False, order=7.0):
             for f in fields:
                 if f.spec.group == "model":
                     self._add(f)
-        self.knot_folder = gui.add_folder("Transition curve knots", expand_by_default=False)
+        self.knot_folder = gui.add_folder("Transition curve knots", expand_by_default=False, order=8.0)
         with self.knot_folder:
             self.gui_add_knot = gui.add_button("add knot", hint="append a knot beyond the last one")
             self.gui_remove_knot = gui.add_button("remove last knot")
@@ -223,15 +224,15 @@ class ModelTab:
         if overlay not in ("none", p.model):
             shown.append((overlay, "overlay", as_model(p, overlay)))
         hyst, strib, slip = [], [], []
-        levels = abcd_levels(p)
-        ss = stick_slip_setup(p)
         vmax = max(abs(p.stribeck.positive.vs), abs(p.stribeck.negative.vs)) * 300
         if fit is not None and getattr(fit, "levels", None) is not None and len(fit.levels.velocity):
             vmax = max(vmax, float(np.max(np.abs(fit.levels.velocity))) * 1.2)
         mags = np.logspace(np.log10(vmax) - 4, np.log10(vmax), 160)
         v = np.concatenate([-mags[::-1], mags])
         for label, role, q in shown:
-            hyst.append((label, role, None if q.model == "static" else abcd_ramp(q, levels=levels, rate=LIVE_RAMP_RATE * levels[1] / 20).runs[0]))
+            lv = abcd_levels(q)  # each model its own Fig. 10 levels: a proposal may be for another machine
+            ss = stick_slip_setup(q)
+            hyst.append((label, role, None if q.model == "static" else abcd_ramp(q, levels=lv, rate=LIVE_RAMP_RATE * lv[1] / 20).runs[0]))
             if role != "overlay":  # every model kind shares S(v): an overlay would hide under the main curve
                 strib.append((label, role, v, stribeck_curve(q, v)))
             slip.append((label, role, stick_slip(q, kp=ss["kp"], velocity=ss["velocity"], duration=STICK_SLIP_S).runs[0]))
@@ -243,16 +244,20 @@ class ModelTab:
         notes = []
         if overlay not in ("none", p.model):
             notes.append(f"{overlay}: same S(v) as {p.model}; its loop on the top/right axes")
+        if proposal is not None and dict(proposal.params.units) != dict(p.units):
+            pu = proposal.params.units
+            notes.append(f"proposal in {pu['position']}, {pu['force']}; current model in {p.units['position']}, "
+                         f"{p.units['force']}: accept it to see the data in its own units")
         if rec is not None and rec.position is not None and (rec.friction is not None or rec.force is not None):
-            from ...identify.diagnose import friction_signal, model_with_effects
             from ...identify.data import Recording
+            from .data_tab import measured_friction, simulated_friction
 
             n = min(len(rec.time), MAX_DATA_SIM)
             part = rec if n == len(rec.time) else Recording(
                 time=rec.time[:n], position=rec.position[:n], source=rec.source,
                 friction=None if rec.friction is None else rec.friction[:n], force=None if rec.force is None else rec.force[:n])
-            model_lines = [(label, role, model_with_effects(q, part)) for label, role, q in shown if role != "overlay"]
-            bottom = {"kind": "data", "t": part.time, "measured": friction_signal(part, p), "model": model_lines,
+            model_lines = [(label, role, simulated_friction(q, part)) for label, role, q in shown if role != "overlay"]
+            bottom = {"kind": "data", "t": part.time, "measured": measured_friction(part, p), "model": model_lines,
                       "name": rec.source + ("" if n == len(rec.time) else f" (first {n} samples)")}
         else:
             pw = to_piecewise(p)

@@ -91,7 +91,7 @@ class SetsTab:
             s.add(start_label, s.params)
 
         # ---------------------------------------------------------------- proposal (left, top)
-        self.gui_proposal = gui.add_folder("Proposal", visible=False)
+        self.gui_proposal = gui.add_folder("Proposal", visible=False, order=1.0)
         with self.gui_proposal:
             self.gui_prop_text = gui.add_markdown("")
             self.gui_accept = gui.add_button("Accept", color="green", hint="make the proposal the current model")
@@ -110,7 +110,7 @@ class SetsTab:
             self.gui_compare = gui.add_markdown("")
 
         # ---------------------------------------------------------------- files (left)
-        with gui.add_folder("Files", expand_by_default=False):
+        with gui.add_folder("Files", expand_by_default=False, order=9.0):
             self.gui_load = gui.add_upload_button("Load parameter YAML", icon=viser.Icon.FILE_UPLOAD,
                                                   mime_type=".yaml,.yml,text/yaml,application/x-yaml")
             self.gui_export = gui.add_button("Export YAML", icon=viser.Icon.DOWNLOAD)
@@ -217,7 +217,7 @@ class SetsTab:
         ctx.proposal = prop
         gap = ""
         if prop.gap_before is not None and prop.gap_after is not None:
-            u = ctx.params.units.get("force", "")
+            u = str(prop.params.units.get("force", "")).replace("*", "·")
             gap = (f"\n\n**Gap** (RMS measured − model): {prop.gap_before:.4g} {u} now → "
                    f"**{prop.gap_after:.4g} {u}** with the proposal")
         self.gui_prop_text.content = (f"**{prop.label}**{gap}\n\n{prop.text}\n\n"

@@ -97,7 +97,19 @@ def open_app(b, url: str, width: int = 1600, height: int = 1000):
     page.goto(url)
     page.wait_for_selector("text=Stribeck ⁺", timeout=60_000)
     wait_plot(page, OVERVIEW, None, timeout=60)
+    dismiss_webgl_notice(page)
     return page
+
+
+def dismiss_webgl_notice(page) -> None:
+    """Headless chromium renders WebGL in software and viser says so in a notification that
+    sits over the plot tabs; a person with a GPU never sees it. Close it."""
+    for _ in range(50):
+        note = page.locator(".mantine-Notification-root", has_text="Software WebGL")
+        if note.count():
+            note.first.locator("button").first.click()
+            return
+        time.sleep(0.1)
 
 
 def plot_signature(page, title: str):
@@ -166,3 +178,13 @@ def measure_latency(page, label: str = "Fs⁺ (N·m)", changes: int = 20, title:
         out.append(page.evaluate(f"window.__lat.changes[{n0}]") - t_press)
         time.sleep(0.15)  # the browser merges slider updates closer than ~50 ms
     return out
+
+
+def choose(page, label: str, option: str, exact_label: bool = True) -> None:
+    """Pick ``option`` in the dropdown labelled ``label``."""
+    lab = page.locator("label").filter(has_text=label)
+    if exact_label:
+        lab = page.locator("label", has_text=__import__("re").compile(f"^{__import__('re').escape(label)}$"))
+    fid = lab.first.get_attribute("for")
+    page.locator(f'[id="{fid}"]').click()
+    page.get_by_role("option", name=option, exact=True).click()
