@@ -474,3 +474,83 @@ def figure_csv(fig) -> str:
         for i, (a, b) in enumerate(zip(np.asarray(x).tolist(), np.asarray(y).tolist())):
             w.writerow([name, axis, a, b, "" if err is None else float(np.asarray(err)[i])])
     return out.getvalue()
+
+
+# ---------------------------------------------------------------- diagnosis report (model-owned effects)
+EFFECT_VARIABLE = {"time_drift": "time", "normal_load": "load", "position_ripple": "position",
+                   "cyclic_softening": "reversals", "presliding_stiffness": "velocity"}
+
+
+def _diag_unit(d) -> tuple[str, str]:
+    u = d.params_before.units
+    return ("friction", u.get("force", "")) if d.space == "friction" else ("position", u.get("position", ""))
+
+
+def diagnosis_steps_figure(d) -> go.Figure:
+    """The RMS gap after every step (model as given, the refitted alternative, each effect
+    added), with the recording's noise floor."""
+    what, unit = _diag_unit(d)
+    labels = [s["label"] for s in d.steps]
+    fig = _Fig()
+    fig.add_trace(dict(type="bar", x=labels, y=[s["rms"] for s in d.steps], name="RMS gap",
+                       marker=dict(color=[COLORS[1]] * 2 + [COLORS[0]] * (len(labels) - 2))))
+    fig.add_trace(_scatter(labels, [d.noise] * len(labels), mode="lines", name="noise floor",
+                           line=dict(color="#444444", dash="dash")))
+    return _layout(fig, f"Gap in {what}, step by step", "", f"RMS ({unit})", xaxis=dict(tickangle=-20))
+
+
+def diagnosis_signal_figure(d) -> go.Figure:
+    """The compared signal against time: measured, the model as given, the final model."""
+    what, unit = _diag_unit(d)
+    fig = _Fig()
+    t, m, b, a = _thin(d.time, d.measured, d.model_before, d.model_after, n=4000)
+    fig.add_trace(_scatter(t, m, mode="markers", name="measured", marker=dict(size=2, color="#7f7f7f")))
+    fig.add_trace(_scatter(t, b, mode="lines", name="model as given", line=dict(color=COLORS[1], width=1)))
+    fig.add_trace(_scatter(t, a, mode="lines", name="final model" + (f" (+ {', '.join(d.effects)})" if d.effects else ""),
+                           line=dict(color=COLORS[0], width=1)))
+    return _layout(fig, f"Measured and predicted {what}", "time (s)", f"{what} ({unit})")
+
+
+def diagnosis_residual_figures(d) -> list:
+    """For every named effect (or time when none): the residual of the step before it against
+    the variable the effect depends on, and the correction the effect made."""
+    what, unit = _diag_unit(d)
+    figs = []
+    named = list(d.effects) or [None]
+    for i, name in enumerate(named):
+        var = EFFECT_VARIABLE.get(name, "time") if name else "time"
+        if var not in d.explaining:
+            var = "time"
+        label, values = d.explaining[var]
+        before = d.step_predictions[1 + i] if name else d.step_predictions[-1]
+        after = d.step_predictions[2 + i] if name else before
+        x, r, c = _thin(values, d.measured - before, after - before, n=4000)
+        fig = _Fig()
+        fig.add_trace(_scatter(x, r, mode="markers", name="residual before", marker=dict(size=2, color=COLORS[1])))
+        if name:
+            fig.add_trace(_scatter(x, c, mode="markers", name=f"{name}'s correction", marker=dict(size=2, color=COLORS[0])))
+        title = f"Residual against {label}" + (f": what {name} explains" if name else "")
+        figs.append(_layout(fig, title, label, f"measured − model ({unit})"))
+    return figs
+
+
+def diagnosis_cv_figure(d) -> go.Figure:
+    """Out-of-sample evidence of the last round's candidates: pooled held-out RMS gain and the
+    share of informative folds improved."""
+    names = [c["name"] for c in d.candidates]
+    fig = _Fig()
+    fig.add_trace(dict(type="bar", x=[100 * c["heldout_gain"] for c in d.candidates], y=names, orientation="h",
+                       name="held-out RMS gain (%)",
+                       marker=dict(color=[COLORS[2] if c["significant"] else ("#e0a000" if c["passes"] else "#bbbbbb")
+                                          for c in d.candidates]),
+                       text=[f"{c['folds_improved']}/{c['folds_informative']} folds" for c in d.candidates],
+                       textposition="auto"))
+    fig.add_trace(_scatter([100 * d.settings.min_gain] * 2, [names[0], names[-1]] if names else [0, 0], mode="lines",
+                           name="threshold", line=dict(color="#444444", dash="dash")))
+    return _layout(fig, "Candidates, last round: held-out gain (blocked cross-validation)", "% of the held-out RMS",
+                   "", yaxis=dict(autorange="reversed"))
+
+
+def diagnosis_report_figures(d) -> list:
+    return [diagnosis_steps_figure(d), diagnosis_signal_figure(d), *diagnosis_residual_figures(d),
+            diagnosis_cv_figure(d)]

@@ -9,17 +9,36 @@ import plotly.io as pio
 from . import plots
 
 
+def _table(rows: list, header: list) -> str:
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in r) + "</tr>" for r in rows)
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
 def diagnosis_html(d, source: str) -> str:
-    figs = plots.diagnosis_figures(d)
+    figs = plots.diagnosis_report_figures(d)
     parts = []
     for i, fig in enumerate(figs):
         parts.append(pio.to_html(fig, include_plotlyjs=(i == 0), full_html=False, config={"displaylogo": False}))
     title = f"Friction model diagnosis — {html.escape(source)}"
+    steps = _table([[s["label"], f"{s['rms']:.4g}", f"{s['rms'] / d.noise:.2f}" if d.noise else "",
+                     ", ".join(f"{k} = {v:.4g}" for k, v in (s.get("params") or {}).items())] for s in d.steps],
+                   ["step", "RMS gap", "× noise floor", "effect parameters"])
+    conf = ""
+    if d.confounded:
+        conf = "<h2>Confounded candidates</h2>" + _table(
+            [[" / ".join(c["effects"]), f"{c['correlation']:.2f}", " vs ".join(f"{100 * g:.1f} %" for g in c["gains"]),
+              c["experiment"]] for c in d.confounded],
+            ["candidates", "correlation of corrections", "held-out gains", "experiment that separates them"])
     return f"""<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>{title}</title>
-<style>body{{font-family:Arial,sans-serif;max-width:1100px;margin:2em auto;}} pre{{background:#f6f6f6;padding:1em;}}</style>
+<style>body{{font-family:Arial,sans-serif;max-width:1100px;margin:2em auto;}} pre{{background:#f6f6f6;padding:1em;}}
+table{{border-collapse:collapse;margin:1em 0;}} td,th{{border:1px solid #ccc;padding:4px 8px;text-align:left;}}</style>
 </head><body>
 <h1>{title}</h1>
+<h2>Gap step by step</h2>
+{steps}
+{conf}
 <pre>{html.escape(d.text())}</pre>
 {''.join(f'<div>{p}</div>' for p in parts)}
 </body></html>

@@ -77,6 +77,7 @@ class Comparison:
     windows: list = field(default_factory=list)  # position space: (start, end) sample ranges
     notes: list = field(default_factory=list)
     flipped: bool = False
+    z_presliding: float = 0.0  # the model's presliding range (position units)
 
     @property
     def unit(self) -> str:
@@ -210,6 +211,21 @@ class Term:
     free: tuple  # (param name, transform "lin"|"log", lo, hi) in transformed coordinates
 
 
+def presliding_range(params: FrictionParams) -> float:
+    """Displacement over which the transition curve reaches 90 % of its last knot's force."""
+    tc = params.transition_curve
+    if tc.kind == "piecewise_linear":
+        z, F = np.asarray(tc.z), np.asarray(tc.F)
+        return float(np.interp(0.9 * F[-1], F, z))
+    return float(2.0 * tc.shape["z0"])
+
+
+def ripple_min_wavelength(cmp_: Comparison) -> float:
+    """A ripple shorter than two presliding ranges cannot be told from the hysteresis that
+    follows every reversal, nor one shorter than ten position noise sds from the noise."""
+    return max(2.0 * cmp_.z_presliding, 10.0 * cmp_.position_noise)
+
+
 def _terms_for(name: str, cmp_: Comparison) -> Term:
     t = cmp_.time
     T = float(t[-1] - t[0])
@@ -223,8 +239,9 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
         return Term(name, {"N0": ref if ref > 0 else float(np.max(n))}, (("alpha", "lin", 0.0, 3.0),))
     if name == "position_ripple":
         span = float(np.ptp(cmp_.path))
+        lo = min(ripple_min_wavelength(cmp_), span / 4)
         return Term(name, {}, (("cs", "lin", -0.9, 0.9), ("cc", "lin", -0.9, 0.9),
-                               ("wavelength", "log", math.log(span / 2000), math.log(span / 2))))
+                               ("wavelength", "log", math.log(lo), math.log(span / 2))))
     if name == "cyclic_softening":
         nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1])
         return Term(name, {"min_excursion": cmp_.min_excursion},
@@ -295,20 +312,18 @@ class Engine:
         return self._windows(fs, ss)
 
     def _windows(self, fs, ss) -> np.ndarray:
-        c = self.c
-        out = np.empty(len(c.time))
-        from ..model.simulate import initial_state
+        from ..model.windows import simulate_windows
 
-        st = initial_state(self.p)
-        for a, b in c.windows:
-            v0 = float(c.velocity[a])
-            if abs(v0) < c.v_rest:
-                v0 = 0.0
-            r = simulate_force(self.p, c.time[a:b], c.force[a:b], x0=float(c.path[a]), v0=v0, state=st,
-                               friction_scale=fs[a:b], stiffness_scale=None if ss is None else ss[a:b])
-            out[a:b] = r.position
+        c = self.c
+        if not hasattr(self, "_starts"):
+            self._starts = np.array([a for a, _ in c.windows], dtype=np.int64)
+            v0 = c.velocity[self._starts].copy()
+            v0[np.abs(v0) < c.v_rest] = 0.0
+            self._x0 = c.path[self._starts].copy()
+            self._v0 = v0
         self.sims += 1
-        return out
+        return simulate_windows(self.p, c.time, c.force, self._starts, self._x0, self._v0, friction_scale=fs,
+                                stiffness_scale=ss)
 
 
 @dataclass
@@ -319,6 +334,15 @@ class FitResult:
     pred: np.ndarray
     rss: float
     u: np.ndarray
+
+
+FIT_SAMPLES = 6000  # residuals a least-squares step works on (an even subsample; the effects are slow)
+
+
+def _thinned(mask: np.ndarray) -> np.ndarray:
+    idx = np.flatnonzero(mask)
+    stride = max(1, int(math.ceil(len(idx) / FIT_SAMPLES)))
+    return idx[::stride]
 
 
 def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k0: bool, k0: float,
@@ -350,9 +374,11 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
             i += m
         return g, kk, entries
 
+    idx = _thinned(mask)
+
     def resid(u):
         g, kk, entries = unpack(u)
-        return (meas - engine.predict(g, kk, entries))[mask]
+        return (meas - engine.predict(g, kk, entries))[idx]
 
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4, max_nfev=max_nfev)
     g, kk, entries = unpack(sol.x)
@@ -381,10 +407,12 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
             i += m
         return g, kk, params.replace(n=float(n0 * math.exp(ln)), sigma1=float(s10 * math.exp(ls))), entries
 
+    idx = _thinned(mask)
+
     def resid(u):
         g, kk, p, entries = unpack(u)
         engine.set_base(p)
-        return (meas - engine.predict(g, kk, entries))[mask]
+        return (meas - engine.predict(g, kk, entries))[idx]
 
     lo = np.concatenate([[-math.log(5), -math.log(20), math.log(1.0 / n0), -math.log(100)],
                          [f[2] for t in terms for f in t.free]])
@@ -398,7 +426,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
 
 
 # ---------------------------------------------------------------- screening a candidate's shape
-def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, count: int = 3) -> list:
+def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, lam_min: float, count: int = 3) -> list:
     """Wavelengths of the strongest peaks in the spectrum of the relative residual against
     position (sliding samples, binned on a uniform position grid)."""
     moving = np.abs(cmp_.velocity) > cmp_.v_rest
@@ -430,7 +458,8 @@ def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, c
     spec = np.abs(np.fft.rfft(prof * np.hanning(nb)))
     dxb = (edges[1] - edges[0])
     k = np.arange(len(spec))
-    valid = (k >= 3) & (k <= nb // 4)  # at least 3 periods over the range, 4 bins a period
+    # at least 3 periods over the range, 4 bins a period, not shorter than lam_min
+    valid = (k >= 3) & (k <= nb // 4) & (k <= nb * dxb / max(lam_min, 1e-300))
     out = []
     sp = np.where(valid, spec, 0.0)
     for _ in range(count):
@@ -458,7 +487,8 @@ def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, b
         nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1]) or 1.0
         return [("n_c", math.log(v)) for v in nrev * np.geomspace(0.02, 2.0, 5)]
     if name == "position_ripple":
-        return [("wavelength", math.log(v)) for v in _ripple_wavelengths(cmp_, resid, base)]
+        lo = term.free[2][2]
+        return [("wavelength", math.log(v)) for v in _ripple_wavelengths(cmp_, resid, base, lo)]
     return [(None, None)]
 
 
@@ -509,8 +539,9 @@ def fold_masks(n: int, folds: int, blocks_per_fold: int, windows=None) -> list:
     nb = folds * blocks_per_fold
     block = np.minimum((np.arange(n) * nb) // max(n, 1), nb - 1)
     if windows:
+        orig = block.copy()
         for a, b in windows:
-            block[a:b] = block[a]
+            block[a:b] = orig[a]
     fold = block % folds
     return [fold == k for k in range(folds)]
 
@@ -698,6 +729,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     say(0.01, "choosing where to compare")
     cmp_ = comparison_of(rec, params)
     base_params = params.replace(effects=())
+    cmp_.z_presliding = presliding_range(params)
     engine = Engine(base_params, cmp_)
     meas = cmp_.measured
     n = len(meas)

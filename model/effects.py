@@ -263,6 +263,7 @@ def needs_motion(effects) -> bool:
 
 
 DRIVES = ("displacement", "force", "closed_loop")
+MOTION_PASSES = 8  # fixed-point passes for motion-dependent effects under a force or closed-loop drive
 
 
 @dataclass(frozen=True)
@@ -321,13 +322,24 @@ def predict(params, drive: str, signals: Signals, *, state: np.ndarray | None = 
         ctx = context_of(signals.time, signals.position, signals.load, th)
         fs, ss = effect_scales(effects, ctx)
         return _run(params, drive, signals, fs, ss, state)
-    # the motion is the plant's output: evaluate the motion-dependent factors along a first
-    # pass without them (one fixed-point step), then simulate with all of them
+    # the motion is the plant's output: evaluate the motion-dependent factors along the
+    # motion of the previous pass (the first without them) until the motion stops changing
+    # (fixed-point iteration; the factors act inside the loop of every pass)
     still = [e for e in effects if not any(n in ("position", "velocity", "reversals") for n in effect_of(e["name"]).needs)]
     ctx0 = context_of(signals.time, None, signals.load)
     fs, ss = effect_scales(still, ctx0)
     st0 = None if state is None else state.copy()
-    first = _run(params, drive, signals, fs, ss, st0)
-    ctx = context_of(signals.time, first.position, signals.load, th)
-    fs, ss = effect_scales(effects, ctx)
-    return _run(params, drive, signals, fs, ss, state)
+    prev = _run(params, drive, signals, fs, ss, None if st0 is None else st0.copy())
+    for _ in range(MOTION_PASSES):
+        ctx = context_of(signals.time, prev.position, signals.load, th)
+        fs, ss = effect_scales(effects, ctx)
+        cur = _run(params, drive, signals, fs, ss, None if st0 is None else st0.copy())
+        span = float(np.ptp(cur.position)) or 1.0
+        done = float(np.max(np.abs(cur.position - prev.position))) <= 1e-9 * span
+        prev = cur
+        if done:
+            break
+    if state is not None:
+        state[:] = st0
+        _run(params, drive, signals, fs, ss, state)
+    return prev

@@ -55,9 +55,10 @@ class Case:
         return f"{self.kind}/{self.seed}/{'+'.join(self.effects) or 'none'}"
 
 
-def _duration(kind: str) -> float:
-    # a first pass without hooks tells how long the schedule is
-    return {"robot_joint": 66.0, "linear_stage": 66.0, "tribometer": 87.0}[kind]
+def _duration(kind: str, seed: int, gen: dict) -> float:
+    """Length of the schedule (a first pass without hooks)."""
+    df, _ = R.make_recording(kind, seed, **gen)
+    return float(df.iloc[-1, 0] - df.iloc[0, 0])
 
 
 def _load_schedule(rng, T: float, N_ref: float, spread: float):
@@ -104,7 +105,7 @@ class _ReversalCounter:
         return self.count
 
 
-def make_case(kind: str, seed: int, effects=(), *, load_ramps: bool | None = None):
+def make_case(kind: str, seed: int, effects=(), *, load_ramps: bool | None = None, **gen):
     """One recording of ``kind`` with the ``effects`` hidden in it (see the module docstring)."""
     effects = tuple(effects)
     for e in effects:
@@ -112,14 +113,14 @@ def make_case(kind: str, seed: int, effects=(), *, load_ramps: bool | None = Non
             raise ValueError(f"unknown hidden effect {e!r}")
     mach = R._random_machine(kind, np.random.default_rng(seed))  # the machine make_recording will draw
     rng = np.random.default_rng([seed, 9173])
-    T = _duration(kind)
+    T = _duration(kind, seed, gen)
     zr = float(np.max(mach["alpha"] * (mach["stribeck"]["positive"]["Fs"] - mach["stribeck"]["negative"]["Fs"])
                       / mach["k"]))
     case = Case(kind, seed, effects)
     fmods, kmods = [], []
     normal_load = None
     if kind == "tribometer":
-        ramps = ("normal_load" not in effects) if load_ramps is None else load_ramps
+        ramps = False if load_ramps is None else (load_ramps and "normal_load" not in effects)
         case.load_ramps = ramps
         if not ramps and "normal_load" not in effects:
             N0 = rng.uniform(3.0, 6.0)
@@ -170,7 +171,7 @@ def make_case(kind: str, seed: int, effects=(), *, load_ramps: bool | None = Non
         return out
 
     df, truth = R.make_recording(kind, seed, friction_modifier=fmod if fmods else None,
-                                 stiffness_modifier=kmods[0] if kmods else None, normal_load=normal_load)
+                                 stiffness_modifier=kmods[0] if kmods else None, normal_load=normal_load, **gen)
     return df, truth, case
 
 

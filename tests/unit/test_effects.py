@@ -1,0 +1,113 @@
+"""Effects owned by the model: validation of a parameter file's entry, the factors inside the
+simulation, and the count of significant reversals — each against an expectation written
+out here, not taken from the code under test."""
+
+import math
+
+import numpy as np
+import pytest
+
+from leuven_friction.model import FrictionParams, ParameterError, simulate_displacement, simulate_force
+from leuven_friction.model.effects import EFFECTS, Signals, predict, significant_reversals, validate_effect_entry
+
+
+def _entry(name, **params):
+    return {"name": name, "params": params}
+
+
+def test_every_effect_declares_units_bounds_and_how_it_acts():
+    for e in EFFECTS.values():
+        assert e.acts_on in ("friction", "stiffness")
+        assert e.params and all(p.unit and p.lo <= p.hi and p.description for p in e.params)
+        assert e.separated_by
+
+
+@pytest.mark.parametrize("entry, field", [
+    (_entry("time_drift", b=0.1, tau=10.0), "effects.0.params.t0"),  # missing
+    (_entry("time_drift", b=0.1, tau=10.0, t0=0.0, gamma=1.0), "effects.0.params.gamma"),  # unknown
+    (_entry("normal_load", alpha=5.0, N0=1.0), "effects.0.params.alpha"),  # out of bounds
+    (_entry("position_ripple", a=0.1, wavelength=0.0, phase=0.0), "effects.0.params.wavelength"),
+    ({"name": "gremlins", "params": {}}, "effects.0.name"),
+    ({"name": "time_drift"}, "effects.0.params"),
+])
+def test_a_bad_effect_entry_is_one_line_naming_the_field(kuka, entry, field):
+    d = kuka.to_dict()
+    d["effects"] = [entry]
+    with pytest.raises(ParameterError) as e:
+        FrictionParams.from_dict(d)
+    msg = str(e.value)
+    assert msg.startswith(field) and "\n" not in msg
+
+
+def test_effect_entry_round_trips_through_the_parameter_dict(kuka):
+    p = kuka.replace(effects=(_entry("time_drift", b=-0.2, tau=30.0, t0=0.0),))
+    back = FrictionParams.from_dict(p.to_dict())
+    assert back.effects[0]["name"] == "time_drift" and back.effects[0]["params"]["tau"] == 30.0
+    assert validate_effect_entry(back.effects[0], "e")["params"]["b"] == -0.2
+
+
+def test_friction_factor_along_a_displacement_is_the_physical_law(kuka):
+    t = np.arange(20000) * 1e-3
+    x = 0.05 * np.sin(2 * np.pi * 0.25 * t)
+    load = 800.0 + 300.0 * np.sin(2 * np.pi * 0.07 * t)
+    base = simulate_displacement(kuka, t, x).friction_force
+    p = kuka.replace(effects=(_entry("time_drift", b=0.3, tau=5.0, t0=0.0), _entry("normal_load", alpha=0.7, N0=800.0)))
+    got = predict(p, "displacement", Signals(time=t, position=x, load=load)).friction_force
+    law = (1 + 0.3 * (1 - np.exp(-t / 5.0))) * (load / 800.0) ** 0.7
+    assert np.allclose(got, base * law, rtol=1e-12, atol=1e-9)
+
+
+def test_a_force_driven_plant_feels_the_friction_factor(kuka):
+    # constant applied force above F_s+ of the base model but below 1.5·F_s+: the plant
+    # without the effect breaks away; with friction ×1.5 everywhere (a settled drift) it sticks
+    t = np.arange(4000) * 1e-3
+    f = np.full(len(t), 1.2 * kuka.stribeck.positive.Fs)
+    free = simulate_force(kuka, t, f)
+    held = predict(kuka.replace(effects=(_entry("time_drift", b=0.5, tau=1e-6, t0=-1.0),)), "force",
+                   Signals(time=t, force=f))
+    assert free.position[-1] > 1e-2
+    assert abs(held.position[-1]) < 1e-3  # presliding only: within the transition curve's range
+
+
+def test_ripple_in_a_force_drive_is_evaluated_along_the_simulated_motion(kuka):
+    t = np.arange(6000) * 1e-3
+    f = np.full(len(t), 1.6 * kuka.stribeck.positive.Fs)
+    lam = 0.05
+    eff = _entry("position_ripple", a=0.3, wavelength=lam, phase=0.0)
+    r = predict(kuka.replace(effects=(eff,)), "force", Signals(time=t, force=f))
+    # the plant feels the friction it reports: momentum balance I·Δv = Σ (f − F)·dt (eq. (8))
+    dt = np.diff(t)
+    assert kuka.inertia * (r.velocity[-1] - r.velocity[0]) == pytest.approx(np.sum((f[1:] - r.friction_force[1:]) * dt),
+                                                                            rel=0.02)
+    # and the ripple rides on its own motion: the friction correlates with the ripple at its
+    # own positions, and divided by it, no longer does
+    s = slice(2000, None)
+    ripple = np.sin(2 * np.pi * r.position[s] / lam)
+    F = r.friction_force[s]
+    assert np.corrcoef(F, ripple)[0, 1] > 0.5
+    assert abs(np.corrcoef(F / (1 + 0.3 * ripple), ripple)[0, 1]) < 0.1
+
+
+def test_significant_reversals_ignore_wiggles_below_the_threshold():
+    rng = np.random.default_rng(3)
+    turns = np.array([0.0, 1.0, 0.2, 0.9, 0.1, 0.5])
+    x = np.concatenate([np.linspace(a, b, 200) for a, b in zip(turns[:-1], turns[1:])])
+    noisy = x + rng.uniform(-0.01, 0.01, len(x))
+    assert significant_reversals(x)[-1] == 4
+    assert significant_reversals(noisy, 0.05)[-1] == 4
+    assert significant_reversals(noisy, 0.0)[-1] > 50
+
+
+def test_softening_factor_scales_the_presliding_stiffness(kuka):
+    # after a reversal F_h follows F_b + F_d(κ·z) (eq. (4) with the stiffness factor): with
+    # κ = 0.5 the force change over a small displacement is Table II's curve at half of it
+    t = np.arange(3000) * 1e-3
+    x = np.concatenate([np.linspace(0, 1e-3, 1000), np.linspace(1e-3, 0, 1000), np.linspace(0, 1e-3, 1000)])
+    eff = _entry("cyclic_softening", h=-0.5, n_c=1e-6, min_excursion=0.0)  # saturated at once: κ = 0.5
+    z_knots, F_knots = np.array(kuka.transition_curve.z), np.array(kuka.transition_curve.F)
+    for kappa, p in ((1.0, kuka), (0.5, kuka.replace(effects=(eff,)))):
+        fh = predict(p, "displacement", Signals(time=t, position=x)).hysteresis_force
+        k = np.arange(2001, 2012)
+        dx = x[k] - x[2000]
+        expected = np.interp(kappa * dx, z_knots, F_knots)
+        assert np.allclose(fh[k] - fh[2000], expected, rtol=0.03), kappa
