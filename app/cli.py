@@ -23,6 +23,13 @@ def _params(path: str | None, model: str | None):
     return as_model(p, model) if model else p
 
 
+def _recording(arg: str) -> str:
+    """A recording argument: ``sample:NAME`` names a recording shipped with the package."""
+    from ..sample_data import resolve
+
+    return resolve(arg)
+
+
 def _frame(result_runs, labels):
     import pandas as pd
 
@@ -71,7 +78,7 @@ def cmd_simulate(args) -> int:
 
     cols = parse_column_mapping(args.columns)
     need = ("time", "position") if args.drive == "displacement" else ("time", "force")
-    rec = load_recording(args.input, columns=cols, require=need)
+    rec = load_recording(_recording(args.input), columns=cols, require=need)
     if params.effects:
         # a model extended by the diagnosis predicts with its effects, for either drive (the
         # one prediction path of model.effects; a force drive evaluates them along its motion)
@@ -103,7 +110,7 @@ def cmd_diagnose(args) -> int:
 
     outputs = Outputs({"--json": args.json, "--html": args.html, "--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
-    rec = load_recording(args.data, columns=cols, require=("time", "position"))
+    rec = load_recording(_recording(args.data), columns=cols, require=("time", "position"))
     if args.params:
         params = _params(args.params, None)
     else:
@@ -153,7 +160,7 @@ def cmd_fit(args) -> int:
     outputs = Outputs({"--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
     base = _params(args.params, None)
-    recs = [load_recording(path, columns=cols) for path in args.data]
+    recs = [load_recording(_recording(path), columns=cols) for path in args.data]
     for r in recs:
         for note in r.notes:
             print(f"{r.source}: {note}", file=sys.stderr)
@@ -189,6 +196,7 @@ def cmd_serve(args) -> int:
     if args.data:
         from pathlib import Path
 
+        args.data = _recording(args.data)
         if not Path(args.data).is_file():
             raise UserError(f"--data: {args.data} is not a file")
     params = _params(args.params, None)
@@ -220,6 +228,45 @@ def cmd_bench(args) -> int:
     return 0
 
 
+def cmd_samples(args) -> int:
+    from pathlib import Path
+
+    from .. import sample_data
+    from .outputs import Outputs
+
+    chosen = args.names or list(sample_data.names())
+    files = {name: sample_data.path(name) for name in chosen}
+    if args.list or not args.out:
+        for name, path in files.items():
+            print(f"sample:{path.stem:26s} {sample_data.DESCRIPTIONS.get(path.stem, '')}")
+        if not args.out:
+            print(f"(files in {next(iter(files.values())).parent}; copy them with --out DIR)", file=sys.stderr)
+        return 0
+    out_dir = Path(args.out)
+    if out_dir.exists() and not out_dir.is_dir():
+        raise UserError(f"--out {out_dir}: not a directory")
+    if not out_dir.exists() and not out_dir.parent.is_dir():
+        raise UserError(f"--out {out_dir}: directory {out_dir.parent} does not exist")
+    targets = [out_dir / p.name for p in files.values()]
+    for target in targets:
+        if target.exists():  # a user's copy may have been edited: never overwrite it
+            raise UserError(f"--out {target}: already exists; remove it or choose another directory")
+    created = not out_dir.exists()
+    if created:
+        out_dir.mkdir()
+    try:
+        with Outputs([("--out", t) for t in targets]) as outputs:
+            for path, target in zip(files.values(), targets):
+                outputs.write_bytes(target, path.read_bytes())
+    except BaseException:
+        if created and not any(out_dir.iterdir()):
+            out_dir.rmdir()  # all or none: not even the directory
+        raise
+    for target in targets:
+        print(target)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="leuven-friction", description="Leuven integrated friction model: simulate, fit, explore.")
     sub = ap.add_subparsers(dest="command", required=True)
@@ -228,7 +275,7 @@ def build_parser() -> argparse.ArgumentParser:
     sv.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1)")
     sv.add_argument("--port", type=int, default=8080, help="port (default 8080; 0 picks a free one)")
     sv.add_argument("--params", help="parameter YAML to start from (default: the paper's KUKA IR 361 axis 1)")
-    sv.add_argument("--data", help="a CSV recording to fit at start")
+    sv.add_argument("--data", help="a CSV recording to fit at start (or sample:NAME, see `samples`)")
     sv.set_defaults(func=cmd_serve)
 
     s = sub.add_parser("simulate", help="run a paper experiment or drive the model with a recording")
@@ -236,7 +283,7 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--list", action="store_true", help="list the experiments")
     s.add_argument("--model", choices=MODEL_NAMES, help="model kind (default: the file's, else leuven)")
     s.add_argument("--params", help="parameter YAML (default: the paper's KUKA IR 361 axis 1)")
-    s.add_argument("--input", help="recorded CSV to drive the model with")
+    s.add_argument("--input", help="recorded CSV to drive the model with (or sample:NAME)")
     s.add_argument("--drive", choices=["displacement", "force"], default="displacement",
                    help="which recorded column drives the model (default: displacement)")
     s.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau")
@@ -244,7 +291,7 @@ def build_parser() -> argparse.ArgumentParser:
     s.set_defaults(func=cmd_simulate)
 
     f = sub.add_parser("fit", help="fit S(v) and the transition curve to recorded CSV data")
-    f.add_argument("data", nargs="+", help="recorded CSV/TSV files")
+    f.add_argument("data", nargs="+", help="recorded CSV/TSV files (or sample:NAME for a shipped one, see `samples`)")
     f.add_argument("--out", required=True, help="parameter YAML to write")
     f.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau")
     f.add_argument("--params", help="starting/default parameters for what the data cannot determine")
@@ -260,7 +307,7 @@ def build_parser() -> argparse.ArgumentParser:
     f.set_defaults(func=cmd_fit)
 
     d = sub.add_parser("diagnose", help="find the physical effect the model misses, add it, show the gap shrink")
-    d.add_argument("data", help="recorded CSV/TSV (time, position, and friction or applied force)")
+    d.add_argument("data", help="recorded CSV/TSV (time, position, and friction or applied force), or sample:NAME")
     d.add_argument("--params", help="current model (default: fit the base model to the data first)")
     d.add_argument("--columns", help="column mapping, e.g. time=t,position=q,friction=F")
     d.add_argument("--json", help="write the result (effects named, gap per step, regimes, candidates with their "
@@ -268,6 +315,12 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--html", help="write a self-contained HTML report")
     d.add_argument("--out", help="write the extended model as YAML")
     d.set_defaults(func=cmd_diagnose)
+
+    sm = sub.add_parser("samples", help="list the sample recordings shipped with the package, or copy them out")
+    sm.add_argument("names", nargs="*", help="which samples (default: all); see --list")
+    sm.add_argument("--list", action="store_true", help="list them (the default without --out)")
+    sm.add_argument("--out", help="directory to copy the CSV files into (created if its parent exists)")
+    sm.set_defaults(func=cmd_samples)
 
     b = sub.add_parser("bench", help="measure simulator (and fit) speed")
     b.add_argument("--quick", action="store_true", help="smaller problem sizes")
