@@ -1,0 +1,50 @@
+"""The installed layout: one import name, every product folder in the wheel, no checkout tool
+imported by the product. (tests/slow/test_wheel.py builds and installs the wheel itself.)"""
+
+import ast
+import re
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+CONFIG = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+PRODUCT = {"leuven_friction": "leuven_friction", "leuven_friction.model": "model",
+           "leuven_friction.identify": "identify", "leuven_friction.app": "app",
+           "leuven_friction.sample_data": "sample_data"}
+
+
+def test_package_dir_maps_the_root_folders_under_one_name():
+    assert CONFIG["package-dir"] == PRODUCT
+
+
+def test_every_product_folder_is_a_listed_package():
+    listed = set(CONFIG["packages"])
+    for name, folder in PRODUCT.items():
+        for init in (ROOT / folder).rglob("__init__.py"):
+            rel = init.parent.relative_to(ROOT / folder).parts
+            assert ".".join((name, *rel)) in listed, f"{init.parent} is not in [tool.setuptools] packages"
+    assert all(p.startswith("leuven_friction") for p in listed)  # no generic top-level names
+
+
+def test_samples_are_package_data():
+    patterns = CONFIG["package-data"]["leuven_friction.sample_data"]
+    for csv in (ROOT / "sample_data").glob("*.csv"):
+        assert any(csv.match(p) for p in patterns)
+
+
+def _imports(path: Path):
+    tree = ast.parse(path.read_text(), str(path))
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                yield 0, a.name
+        elif isinstance(node, ast.ImportFrom):
+            yield node.level, node.module or ""
+
+
+def test_product_imports_no_checkout_tool_and_its_own_parts_relatively():
+    tools = re.compile(r"^(bench|synth|tests|model|identify|app|sample_data)(\.|$)")
+    for folder in ("model", "identify", "app", "sample_data"):
+        for py in (ROOT / folder).rglob("*.py"):
+            for level, module in _imports(py):
+                assert not (level == 0 and tools.match(module)), f"{py.relative_to(ROOT)} imports {module}"
