@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import io
 import json
 import sys
 
@@ -30,30 +29,36 @@ def _recording(arg: str) -> str:
     return resolve(arg)
 
 
-def _frame(result_runs, labels):
-    import pandas as pd
+def _table(result_runs, labels) -> dict:
+    """The simulated series as named columns; several runs one under the other, labelled."""
+    import numpy as np
 
-    frames = []
-    for i, (r, label) in enumerate(zip(result_runs, labels)):
-        df = pd.DataFrame(r.columns())
-        if len(result_runs) > 1:
-            df.insert(0, "run", label)
-        frames.append(df)
-    return pd.concat(frames, ignore_index=True)
+    names = result_runs[0].columns().keys()
+    table = {}
+    if len(result_runs) > 1:
+        table["run"] = np.repeat(np.asarray(labels, dtype=object), [len(r) for r in result_runs])
+    for c in names:
+        table[c] = np.concatenate([r.columns()[c] for r in result_runs])
+    return table
 
 
-def _write_csv(df, path: str) -> None:
-    from .outputs import write_outputs
+def _write_table(table: dict, path: str) -> None:
+    """CSV, or Parquet for a .parquet/.pq name; streamed into a file beside the target and
+    renamed into place (nothing half-written)."""
+    from ..identify.io import table_format, write_table
+    from .outputs import Outputs
 
-    buf = io.StringIO()
-    df.to_csv(buf, index=False, float_format="%.10g")
-    write_outputs({"--out": (path, buf.getvalue())})
+    with Outputs({"--out": path}) as outputs:
+        staged = outputs.stage(path)
+        try:
+            write_table(table, staged, fmt=table_format(path))
+        except OSError as e:
+            raise UserError(f"--out {path}: cannot write ({e.strerror})") from None
 
 
 def cmd_simulate(args) -> int:
-    from ..model.experiments import EXPERIMENTS, run_experiment
-    from ..model.simulate import simulate_displacement, simulate_force
-
+    if args.list or args.experiment:  # the experiments import scipy: only when asked for
+        from ..model.experiments import EXPERIMENTS, run_experiment
     if args.list:
         for name, (_, text) in EXPERIMENTS.items():
             print(f"{name:26s} {text}")
@@ -68,13 +73,14 @@ def cmd_simulate(args) -> int:
         if args.experiment not in EXPERIMENTS:
             raise UserError(f"--experiment: unknown {args.experiment!r}; known: {', '.join(EXPERIMENTS)}")
         res = run_experiment(args.experiment, params)
-        df = _frame(res.runs, res.labels)
-        _write_csv(df, args.out)
-        print(f"{args.experiment} ({params.model}): {len(df)} rows -> {args.out}")
+        table = _table(res.runs, res.labels)
+        _write_table(table, args.out)
+        print(f"{args.experiment} ({params.model}): {len(table['time'])} rows -> {args.out}")
         return 0
     if not args.input:
         raise UserError("simulate: give --experiment NAME, --input REC.csv or --list")
     from ..identify.data import load_recording, parse_column_mapping
+    from ..model.simulate import simulate_displacement, simulate_force
 
     cols = parse_column_mapping(args.columns)
     need = ("time", "position") if args.drive == "displacement" else ("time", "force")
@@ -91,7 +97,7 @@ def cmd_simulate(args) -> int:
         r = simulate_displacement(params, rec.time, rec.position)
     else:
         r = simulate_force(params, rec.time, rec.force)
-    _write_csv(_frame([r], [params.model]), args.out)
+    _write_table(_table([r], [params.model]), args.out)
     print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}")
     return 0
 
@@ -287,7 +293,7 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--drive", choices=["displacement", "force"], default="displacement",
                    help="which recorded column drives the model (default: displacement)")
     s.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau")
-    s.add_argument("--out", help="output CSV")
+    s.add_argument("--out", help="output table: CSV, or Parquet for a .parquet name")
     s.set_defaults(func=cmd_simulate)
 
     f = sub.add_parser("fit", help="fit S(v) and the transition curve to recorded CSV data")

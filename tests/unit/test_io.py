@@ -1,0 +1,126 @@
+"""Tables in and out: the compiled CSV formatter against Python's own formatting, Parquet and
+MATLAB files through the recording loader, and simulate --input/--out in each format."""
+
+import numpy as np
+import pytest
+
+from leuven_friction.identify.csvformat import rows_bytes
+from leuven_friction.identify.data import load_recording
+from leuven_friction.identify.errors import DataError
+from leuven_friction.identify.io import read_table_file, sniff, write_table
+
+
+def _tricky_values(rng):
+    p = 10.0 ** np.arange(-13, 10)
+    ints = rng.integers(10**9, 10**10, size=5000).astype(float)
+    return np.concatenate([
+        rng.normal(size=50_000) * 10.0 ** rng.uniform(-15, 12, size=50_000),  # incl. Python's fallback range
+        p, -p, np.nextafter(p, 0), np.nextafter(p, np.inf),
+        9.9999999995 * p, 9.99999999949 * p, 9.99999999951 * p,  # rounding across a power of ten
+        ints + 0.5, (ints + 0.5) / 1e3, (ints + 0.5) * 1e-12,  # exact ties at the tenth digit
+        [0.0, -0.0, 1.0, -1.0, 0.1, 0.5, 1e-4, 1e-5, 123456789.5, 1234567890.5, np.inf, -np.inf, np.nan],
+        rng.integers(-10**6, 10**6, size=2000).astype(float),
+    ])
+
+
+def test_compiled_csv_rows_are_byte_identical_to_python_formatting():
+    rng = np.random.default_rng(7)
+    v = _tricky_values(rng)
+    v = v[: len(v) // 3 * 3].reshape(-1, 3)
+    expected = "".join("%.10g,%.10g,%.10g\n" % tuple(r) for r in v).encode()
+    assert rows_bytes(v) == expected
+    finite = v[np.all(np.isfinite(v) & ((np.abs(v) >= 1e-13) & (np.abs(v) < 1e10) | (v == 0)), axis=1)]
+    assert len(finite) > 10_000  # most of it went through the compiled path
+    assert rows_bytes(finite) == "".join("%.10g,%.10g,%.10g\n" % tuple(r) for r in finite).encode()
+
+
+def test_csv_writer_matches_pandas_float_format(tmp_path):
+    pd = pytest.importorskip("pandas")
+    rng = np.random.default_rng(3)
+    cols = {"time": np.arange(1000) * 1e-4, "x": rng.normal(size=1000) * 1e-5, "F": rng.normal(size=1000) * 30}
+    write_table(cols, tmp_path / "a.csv")
+    pd.DataFrame(cols).to_csv(tmp_path / "b.csv", index=False, float_format="%.10g")
+    assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
+    labelled = {"run": np.array(["a"] * 500 + ["b"] * 500, dtype=object), **cols}
+    write_table(labelled, tmp_path / "c.csv")
+    pd.DataFrame(labelled).to_csv(tmp_path / "d.csv", index=False, float_format="%.10g")
+    assert (tmp_path / "c.csv").read_bytes() == (tmp_path / "d.csv").read_bytes()
+
+
+def test_sniff_reads_the_header_not_the_comments():
+    assert sniff(["# made by rig 4; units SI", "t;q;tau", "0,1;2,5;3"]) == (";", ",")
+    assert sniff(["time\tposition", "0\t1"]) == ("\t", ".")
+    assert sniff(["time position", "0 1"]) == (r"\s+", ".")
+
+
+def test_parquet_recording_loads_like_its_csv(tmp_path):
+    pytest.importorskip("pyarrow")
+    rng = np.random.default_rng(4)
+    n = 5000
+    cols = {"Time (ms)": np.arange(n) * 0.5, "Angle [mrad]": np.cumsum(rng.normal(size=n)) * 1e-3,
+            "Torque [Nm]": rng.normal(size=n)}
+    write_table(cols, tmp_path / "r.parquet")
+    rec = load_recording(tmp_path / "r.parquet")
+    # units from the headers, as for a CSV: ms -> s, mrad -> rad
+    np.testing.assert_array_equal(rec.time, cols["Time (ms)"] * 1e-3)
+    np.testing.assert_array_equal(rec.position, cols["Angle [mrad]"] * 1e-3)
+    np.testing.assert_array_equal(rec.force, cols["Torque [Nm]"])
+    assert list(read_table_file(tmp_path / "r.parquet", usecols=lambda c: c.startswith("T")).columns) == [
+        "Time (ms)", "Torque [Nm]"]
+
+
+def test_matlab_file_loads_vectors_structs_and_matrices(tmp_path):
+    from scipy.io import savemat
+
+    n = 400
+    t = np.arange(n) * 1e-3
+    q = np.sin(t)
+    tau = np.cos(t)
+    savemat(tmp_path / "a.mat", {"t": t, "q": q.reshape(-1, 1), "tau": tau, "note": "rig 3"})
+    rec = load_recording(tmp_path / "a.mat")
+    np.testing.assert_array_equal(rec.time, t)
+    np.testing.assert_array_equal(rec.position, q)
+    np.testing.assert_array_equal(rec.force, tau)
+    # a struct of signals and an N×2 matrix
+    savemat(tmp_path / "b.mat", {"log": {"time": t, "angle": q}, "u": np.column_stack([tau, 2 * tau])})
+    df = read_table_file(tmp_path / "b.mat")
+    assert set(df.columns) == {"log.time", "log.angle", "u_1", "u_2"}
+    np.testing.assert_array_equal(df["u_2"], 2 * tau)
+    rec = load_recording(tmp_path / "b.mat", columns={"time": "log.time", "position": "log.angle", "force": "u_1"})
+    np.testing.assert_array_equal(rec.force, tau)
+
+
+def test_unreadable_files_are_data_errors(tmp_path):
+    (tmp_path / "bad.mat").write_bytes(b"not a mat file at all" * 10)
+    with pytest.raises(DataError, match="bad.mat: not a readable MATLAB"):
+        load_recording(tmp_path / "bad.mat")
+    (tmp_path / "empty.csv").write_bytes(b"")
+    with pytest.raises(DataError, match="empty.csv: the file is empty"):
+        load_recording(tmp_path / "empty.csv")
+    with pytest.raises(DataError, match="nothere.csv: cannot read"):
+        load_recording(tmp_path / "nothere.csv")
+    (tmp_path / "bin.csv").write_bytes(b"\x00\x01\x02" * 50)
+    with pytest.raises(DataError, match="bin.csv: not a text file"):
+        load_recording(tmp_path / "bin.csv")
+
+
+@pytest.mark.parametrize("fmt", ["csv", "parquet"])
+def test_simulate_input_output_formats(tmp_path, fmt, kuka):
+    if fmt == "parquet":
+        pytest.importorskip("pyarrow")
+    from leuven_friction.app.cli import main
+    from leuven_friction.model import simulate_displacement
+
+    n = 3000
+    t = np.arange(n) * 1e-3
+    x = 1e-4 * np.sin(2 * np.pi * t)
+    write_table({"time": t, "position": x}, tmp_path / f"in.{fmt}")
+    assert main(["simulate", "--input", str(tmp_path / f"in.{fmt}"), "--out", str(tmp_path / f"out.{fmt}")]) == 0
+    out = read_table_file(tmp_path / f"out.{fmt}")
+    assert list(out.columns) == ["time", "position", "velocity", "applied_force", "friction_force",
+                                 "hysteresis_force", "z"]
+    rec = load_recording(tmp_path / f"in.{fmt}")  # a CSV input holds x to ten digits
+    F = simulate_displacement(kuka, rec.time, rec.position).friction_force
+    # CSV keeps ten significant digits; Parquet keeps the doubles
+    np.testing.assert_allclose(out["friction_force"], F, rtol=1e-9 if fmt == "csv" else 0, atol=1e-12)
+    assert not list(tmp_path.glob(".*.part"))  # nothing left staged
