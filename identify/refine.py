@@ -34,7 +34,7 @@ from scipy.signal import savgol_filter
 from ..model import SignalError, Stribeck, StribeckSide, TransitionCurve, simulate_displacement, simulate_force
 from .markov import NAMES
 from .mle import Quantized
-from .segment import Prepared
+from .segment import Prepared, moving_average
 
 
 @dataclass
@@ -52,10 +52,14 @@ def _smooth(x, w):
     w = int(w) | 1
     if len(x) <= w or w < 5:
         return x
-    return savgol_filter(x, w, 2)
+    return savgol_filter(x, w, 2) if w <= 101 else moving_average(x, w)
 
 
-def experiments_of(preps: list[Prepared], max_samples: int, z_first: float = np.inf) -> list[Experiment]:
+def experiments_of(preps: list[Prepared], max_samples: int, z_first: float = np.inf,
+                   v_slide: float = np.inf) -> list[Experiment]:
+    """The simulated stretches: whole motion-driven recordings; for force-driven ones the
+    opening stretch up to the first speed above ``v_slide`` (gross sliding: 0.3 × the slowest
+    level, as for the presliding branches) or 20 velocity noise floors, whichever is larger."""
     out = []
     for pr in preps:
         rec, th = pr.rec, pr.th
@@ -74,7 +78,7 @@ def experiments_of(preps: list[Prepared], max_samples: int, z_first: float = np.
             out.append(Experiment("motion", pr.source, rec.time[idx], x[idx] if len(x) == len(rec.time) else rec.position[idx],
                                   pr.friction[idx], w[idx]))
         elif pr.force is not None:
-            moving = np.flatnonzero(np.abs(pr.velocity) > 20.0 * th.v_floor)
+            moving = np.flatnonzero(np.abs(pr.velocity) > max(20.0 * th.v_floor, v_slide if np.isfinite(v_slide) else 0.0))
             end = int(moving[0]) if len(moving) else len(rec.time)
             if pr.chunks and pr.chunks[0][1] < end:
                 end = pr.chunks[0][1]
@@ -172,6 +176,9 @@ def refine_fit(res, preps: list[Prepared], *, max_samples: int = 20000, max_nfev
     refinement is repeated with σ1 held."""
     import copy
 
+    if not any(pr.friction is not None for pr in preps):
+        # presliding driven by the applied force barely depends on σ1 (slow ramps): hold it
+        return _refine_once(res, preps, max_samples, max_nfev, free_sigma1=False)
     trial = copy.copy(res)
     trial.held = dict(res.held)
     first = _refine_once(trial, preps, max_samples, max_nfev, free_sigma1=True)
@@ -189,7 +196,8 @@ def refine_fit(res, preps: list[Prepared], *, max_samples: int = 20000, max_nfev
 def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     tc = res.params.transition_curve
     z1 = float(tc.z[1]) if tc.kind == "piecewise_linear" and len(tc.z) > 1 else np.inf
-    exps = experiments_of(preps, max_samples, z1)
+    v_slide = 0.3 * float(np.min(np.abs(res.levels.velocity))) if res.levels is not None and len(res.levels.velocity) else np.inf
+    exps = experiments_of(preps, max_samples, z1, v_slide)
     if not exps:
         res.refinement = {"done": False, "reason": "no recorded input to simulate along (neither a friction column "
                           "nor an opening presliding stretch driven by the applied force)"}
@@ -209,7 +217,10 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
         return res
     theta0 = vec.pack(res.params)
     lo, hi = vec.bounds()
-    theta0 = np.clip(theta0, np.where(np.isfinite(lo), lo + 1e-12 * np.abs(lo), lo), np.where(np.isfinite(hi), hi - 1e-12 * np.abs(hi), hi))
+    lo_pad, hi_pad = lo.copy(), hi.copy()
+    lo_pad[np.isfinite(lo)] += 1e-12 * np.abs(lo[np.isfinite(lo)])
+    hi_pad[np.isfinite(hi)] -= 1e-12 * np.abs(hi[np.isfinite(hi)])
+    theta0 = np.clip(theta0, lo_pad, hi_pad)
 
     def parts(theta):
         p = vec.unpack(theta)

@@ -51,8 +51,13 @@ def detect_noise(x) -> object:
     d = d[d > 1e-9 * scale]
     if len(d):
         q = float(np.quantile(d, 0.01)) if len(d) > 100 else float(np.min(d))
-        k = x / q
-        if q > 0 and np.quantile(np.abs(k - np.round(k)), 0.99) < 1e-3:
+        # on a grid when the steps between readings are whole multiples of the smallest step
+        # (tested on the steps, not the readings: a file's rounding of large readings must
+        # not hide the grid); the step is then the mean single step
+        k = d / q
+        if q > 0 and np.quantile(np.abs(k - np.round(k)), 0.99) < 0.02:
+            single = d[np.round(k) == 1]
+            q = float(np.mean(single)) if len(single) else q
             return Quantized(step=q, jitter=0.25 * q)
     sigma = float(np.sqrt(np.mean([white_noise_sd(a) ** 2 for a in parts if len(a) > 3]))) if parts else 0.0
     return Gaussian(sigma=max(sigma, 1e-12 * max(scale, 1e-300)))
@@ -138,9 +143,11 @@ def _slope(t, x, w, uniform):
     w = min(w, n - (1 - n % 2))
     if w < 3:
         return np.gradient(x, t)
-    if uniform:
+    if uniform and w <= 101:
         dt = (t[-1] - t[0]) / (n - 1)
         return savgol_filter(x, w, 2, deriv=1, delta=dt, mode="interp")
+    # long windows: the same slope (a centred quadratic's derivative at the centre is the
+    # least-squares line's slope) from cumulative sums, O(n) instead of O(n·w)
     h = w // 2
     tc = t - t[0]
     xc = x - x[0]
@@ -152,6 +159,18 @@ def _slope(t, x, w, uniform):
     st, sx, stt, stx = St[hi] - St[lo], Sx[hi] - Sx[lo], Stt[hi] - Stt[lo], Stx[hi] - Stx[lo]
     den = stt - st * st / m
     return np.where(den > 0, (stx - st * sx / m) / np.where(den > 0, den, 1.0), 0.0)
+
+
+def moving_average(a, w):
+    """Centred moving average over w samples (shrinking at the ends), O(n): the value of a
+    local least-squares line at the window's centre."""
+    a = np.asarray(a, dtype=float)
+    n = len(a)
+    h = int(w) // 2
+    c = np.concatenate([[0.0], np.cumsum(a - a[0])])
+    i = np.arange(n)
+    lo, hi = np.clip(i - h, 0, n), np.clip(i + h + 1, 0, n)
+    return (c[hi] - c[lo]) / (hi - lo) + a[0]
 
 
 def _slope_noise(x_noise, w, dt):
@@ -354,7 +373,7 @@ def force_branches(prep: Prepared, Fs_pos: float, Fs_neg: float, v_max: float, *
     out = []
     for a0, b0 in prep.chunks:
         f = prep.force[a0:b0]
-        fs = savgol_filter(f, min(len(f) - (1 - len(f) % 2), max(5, th.window | 1)), 1) if len(f) > 7 else f
+        fs = moving_average(f, max(5, th.window | 1)) if len(f) > 7 else f
         turns = _turning_points(fs, th.f_turn)
         x = rec.position[a0:b0]
         v = np.abs(prep.velocity[a0:b0])
