@@ -35,10 +35,12 @@ CONTROLS_WIDTH = 370
 VIEW_WIDTH = 880  # fits 1280 px beside the controls; widened to the window on the first camera message
 
 # The slider's own number box is a browser numeric input that garbles "1e-3": hidden, the
-# text box above each slider is the number entry.
+# text box above each slider is the number entry. viser's own notifications (upload
+# progress) go to the bottom, so they never cover the plot tabs.
 STYLE = """<style>
 .mantine-Slider-root + .mantine-NumberInput-root, .mantine-Slider-root ~ .mantine-NumberInput-root,
 .mantine-Slider-root ~ div .mantine-NumberInput-input {display:none !important;}
+.mantine-Notifications-root[data-position="top-left"] {top:auto !important; bottom:12px !important;}
 </style>"""
 
 

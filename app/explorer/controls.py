@@ -114,11 +114,24 @@ class ParamControl:
         finally:
             self._quiet.on = False
 
-    def show(self, v: float | None) -> None:
-        """Move both widgets to ``v`` (from code: another set was restored or accepted)."""
+    def show(self, v: float | None, f: Field | None = None) -> None:
+        """Move both widgets to ``v`` (from code: another set was restored or accepted), the
+        slider's range centred on it; ``f``: the field in the new set's units."""
+        if f is not None and f.unit != self.field.unit:
+            self.field = f
+            self.label = f"{f.label} ({f.unit})" if f.unit else f.label
+            self.text.label = self.label
         if v is None:
             return
         self._set_text(v)
+        lo, hi = self._range(v)
+        self._quiet.on = True
+        try:
+            self.slider.min, self.slider.max = lo, hi
+            self.slider.step = (hi - lo) / SLIDER_STEPS
+            self.slider.marks = self._marks(lo, hi)
+        finally:
+            self._quiet.on = False
         self._move_slider(v)
 
     def set_enabled(self, on: bool) -> None:

@@ -194,8 +194,10 @@ class ModelTab:
             pw = to_piecewise(p)
             if len(self.knot_controls) != len(pw.transition_curve.z) - 1:
                 self._build_knots(pw)
+            new_fields = {f.path: f for f in fields_of(pw)}
             for path, c in self.controls.items():
-                c.show(value_for(pw, c.field))
+                f = new_fields.get(path, c.field)
+                c.show(value_for(pw, f), f)
         if reason != "edit" or self._enabled_for != p.model:
             for c in self.controls.values():
                 c.set_enabled(p.model in c.field.models)

@@ -110,7 +110,7 @@ class SetsTab:
             self.gui_compare = gui.add_markdown("")
 
         # ---------------------------------------------------------------- files (left)
-        with gui.add_folder("Files", expand_by_default=False, order=9.0):
+        with gui.add_folder("Files", order=9.0):
             self.gui_load = gui.add_upload_button("Load parameter YAML", icon=viser.Icon.FILE_UPLOAD,
                                                   mime_type=".yaml,.yml,text/yaml,application/x-yaml")
             self.gui_export = gui.add_button("Export YAML", icon=viser.Icon.DOWNLOAD)

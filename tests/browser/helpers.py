@@ -188,3 +188,29 @@ def choose(page, label: str, option: str, exact_label: bool = True) -> None:
     fid = lab.first.get_attribute("for")
     page.locator(f'[id="{fid}"]').click()
     page.get_by_role("option", name=option, exact=True).click()
+
+
+def upload_for(page, button_text: str):
+    """The hidden file input behind the upload button showing ``button_text``."""
+    btn = page.locator("button", has_text=button_text).first
+    for up in ("..", "../..", "../../.."):
+        inp = btn.locator(f"xpath={up}//input[@type='file']")
+        if inp.count():
+            return inp.first
+    raise LookupError(f"no file input next to {button_text!r}")
+
+
+def layout_report(page, title: str = OVERVIEW) -> dict:
+    """Page width against the window, and where the plot titled ``title`` ends."""
+    return page.evaluate("""(title) => {
+      let plot = null;
+      for (const el of document.querySelectorAll('.js-plotly-plot')) {
+        const t = el.querySelector('.gtitle'); if (t && t.textContent.startsWith(title)) plot = el; }
+      const b = plot ? plot.getBoundingClientRect() : null;
+      const tabs = [...document.querySelectorAll('[role=tab]')].map(e => e.getBoundingClientRect());
+      const notes = [...document.querySelectorAll('.mantine-Notification-root')].map(e => e.getBoundingClientRect());
+      return {scrollWidth: document.documentElement.scrollWidth, innerWidth: innerWidth, innerHeight: innerHeight,
+              plot: b ? {left: b.left, right: b.right, top: b.top, bottom: b.bottom} : null,
+              tabs: tabs.map(r => ({left: r.left, right: r.right, top: r.top, bottom: r.bottom})),
+              notes: notes.map(r => ({left: r.left, right: r.right, top: r.top, bottom: r.bottom}))};
+    }""", title)

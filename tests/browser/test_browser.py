@@ -5,6 +5,7 @@ test opens its own page. Bounded: every wait has a timeout, the whole file runs 
 """
 
 import os
+import re
 import time
 from pathlib import Path
 
@@ -13,8 +14,8 @@ import pytest
 
 pytest.importorskip("playwright")
 from tests.browser.helpers import (  # noqa: E402
-    CHROMIUM, OVERVIEW, RECORDING, browser, open_app, plot_signature, plot_traces, running_server, slider, text_box,
-    upload_input, wait_plot,
+    CHROMIUM, OVERVIEW, RECORDING, browser, choose, layout_report, open_app, plot_signature, plot_traces, running_server,
+    slider, text_box, upload_for, wait_plot,
 )
 
 pytestmark = [
@@ -89,9 +90,7 @@ def test_scientific_notation_in_a_number_box(chromium, server):
     box.fill("0,005")
     box.press("Enter")
     wait_plot(page, OVERVIEW, after2)
-    page.get_by_role("tab", name="Parameter sets").click()
-    table = page.locator("table").first.inner_text()
-    assert "250" in table and "0.005" in table
+    assert table_value(page, "Fs⁺") == 250.0 and table_value(page, "vs⁺") == 0.005
     shot(page, "number_entry")
     page.close()
 
@@ -117,4 +116,133 @@ def test_slider_moves_the_plot_and_the_box(chromium, server):
     # a stiffer first segment: the loop reaches D at a smaller displacement, same force
     tr = next(t for t in plot_traces(page, OVERVIEW) if t["name"] == "A–D")
     assert abs(tr["y"][tr["text"].index("D")] - d0) < 1e-6 * max(1.0, abs(d0)) + 0.5
+    page.close()
+
+
+# ---------------------------------------------------------------- the user's own recording
+@pytest.fixture(scope="module")
+def tribometer_file(tmp_path_factory):
+    """A tribometer-like recording from the independent generator (synth/recordings.py):
+    tab-separated, position in mm, friction in µN logged with the reaction sign, a normal-load
+    column — and the position column named so that the loader cannot recognise it."""
+    from synth.recordings import make_recording
+
+    df, truth = make_recording("tribometer", seed=3)
+    df = df.rename(columns={"Position [mm]": "Stage [mm]"})
+    path = tmp_path_factory.mktemp("data") / "pin_on_disc_run7.tsv"
+    df.to_csv(path, sep="\t", index=False)
+    return path, truth
+
+
+def table_value(page, label: str) -> float:
+    """A value of the current-model table (Parameter sets tab)."""
+    page.get_by_role("tab", name="Parameter sets").click()
+    table = page.locator("xpath=//*[contains(text(), 'Current model')]/following::table[1]")
+    row = table.locator("tr", has=page.locator("td", has_text=re.compile(f"^{re.escape(label)}$")))
+    return float(row.first.locator("td").nth(1).inner_text().split("±")[0])
+
+
+def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_file):
+    path, truth = tribometer_file
+    with running_server() as (url, _):
+        page = open_app(chromium, url, 1280, 720)
+        upload_for(page, "Upload recording").set_input_files(str(path))
+        page.get_by_role("tab", name="Data").click()
+        # plotted before any fit, with what was (not) recognised
+        wait_plot(page, RECORDING, None)
+        info = page.locator("text=Recognised").first.locator("xpath=ancestor::div[1]").inner_text()
+        assert "Friction [uN]" in page.content() and "not found" in page.content()
+        friction = next(t for t in plot_traces(page, RECORDING) if t["name"] == "friction")
+        # µN converted to N: the generator's Coulomb level is of order 1 N, never 1e6
+        assert 0.05 < np.percentile(np.abs(friction["y"]), 90) < 50
+        assert "--columns" not in page.locator("body").inner_text()
+        shot(page, "upload_unrecognised_1280")
+        # remap: the position is the "Stage [mm]" column
+        choose(page, "position", "Stage [mm]")
+        page.get_by_role("button", name="Apply columns").click()
+        wait_text(page, "displacement / joint angle", 60)
+        sign_line = page.locator("text=friction sign").first.inner_text()
+        assert "reaction" in sign_line  # the generator logged the reaction force; the page says so
+        # the fit comes back as a proposal: numbers, gap, estimated/held
+        wait_text(page, "Accept", 240)
+        prop = page.locator("text=Gap").first.locator("xpath=ancestor::div[2]").inner_text()
+        assert "Held" in page.locator("body").inner_text() and "Estimated" in page.locator("body").inner_text()
+        gaps = [float(g) for g in re.findall(r"([0-9.]+(?:e-?\d+)?) N", prop)[:2]]
+        assert len(gaps) == 2 and gaps[1] < gaps[0]  # the proposal explains the data better than the paper's robot
+        shot(page, "proposal_1280")
+        # nothing changed before accepting
+        assert table_value(page, "Fs⁺") == pytest.approx(36.0)
+        page.get_by_role("button", name="Accept").click()
+        time.sleep(1.0)
+        fc = table_value(page, "Fc⁺")
+        true_fc = truth.stribeck["positive"]["Fc"]
+        assert abs(fc - true_fc) < 0.25 * abs(true_fc), (fc, true_fc)
+        assert "fit of pin_on_disc_run7.tsv" in page.locator("body").inner_text()
+        # the controls now speak the data's units (N, m), not the paper's (N·m, rad)
+        page.locator("label", has_text=re.compile(r"^Fs⁺ \(N\)$")).first.wait_for(timeout=10_000)
+        assert float(text_box(page, "Fc⁺ (N)").input_value()) == pytest.approx(fc, rel=1e-4)
+        page.get_by_role("tab", name="Model").click()
+        time.sleep(1.0)
+        shot(page, "after_accept_1280")
+
+        # diagnose: a proposal to discard, or a plain "nothing missing"
+        page.get_by_role("button", name="Diagnose").click()
+        page.wait_for_selector("text=Cancel diagnosis", timeout=30_000)
+        # a second press does not start a second job: the button is disabled while it runs
+        assert page.get_by_role("button", name="Diagnose").first.is_disabled()
+        page.wait_for_selector("text=Cancel diagnosis", state="hidden", timeout=300_000)
+        body = page.locator("body").inner_text()
+        assert "see the proposal" in body or "No significant missing effect" in body, body[-2000:]
+        if "see the proposal" in body:
+            page.get_by_role("button", name="Discard").click()
+            time.sleep(0.5)
+        assert table_value(page, "Fc⁺") == pytest.approx(fc, rel=1e-4)  # discarded: the accepted fit stays
+        shot(page, "after_diagnose_1280")
+
+        # reload: the session comes back (accepted fit, recording, history)
+        page.reload()
+        page.wait_for_selector("text=Session restored", timeout=60_000)
+        assert table_value(page, "Fc⁺") == pytest.approx(fc, rel=1e-4)
+        page.get_by_role("tab", name="Data").click()
+        wait_plot(page, RECORDING, None, timeout=60)
+        assert "pin_on_disc_run7.tsv" in page.locator("body").inner_text()
+        page.close()
+
+
+def test_load_yaml_in_the_page(chromium, server, tmp_path):
+    from leuven_friction.identify.paramfile import params_to_yaml
+    from leuven_friction.model import default_params
+    from leuven_friction.model.params import with_value
+
+    p = with_value(with_value(default_params(), "stribeck.positive.Fs", 50.0), "stribeck.positive.Fc", 41.5)
+    f = tmp_path / "stage_axis.yaml"
+    f.write_text(params_to_yaml(p))
+    page = open_app(chromium, server[0])
+    before = plot_signature(page, OVERVIEW)
+    upload_for(page, "Load parameter YAML").set_input_files(str(f))
+    wait_text(page, "Loaded", 30)
+    wait_plot(page, OVERVIEW, before)
+    assert text_box(page, FS).input_value() == "50"
+    assert table_value(page, "Fc⁺") == pytest.approx(41.5)
+    # a broken file is refused with its name, and changes nothing
+    bad = tmp_path / "broken.yaml"
+    bad.write_text("stribeck: [1, 2\n")
+    upload_for(page, "Load parameter YAML").set_input_files(str(bad))
+    wait_text(page, "broken.yaml", 30)
+    assert table_value(page, "Fc⁺") == pytest.approx(41.5)
+    page.close()
+
+
+@pytest.mark.parametrize("width, height", [(1600, 1000), (1280, 720)])
+def test_layout_fits_the_screen(chromium, server, width, height):
+    page = open_app(chromium, server[0], width, height)
+    time.sleep(1.5)  # the plot panel widens once the browser reported its size
+    r = layout_report(page)
+    assert r["scrollWidth"] <= r["innerWidth"], r  # no horizontal scroll
+    assert r["plot"] is not None and r["plot"]["bottom"] <= r["innerHeight"], r  # the four views above the fold
+    assert r["plot"]["right"] <= r["innerWidth"] + 1
+    assert r["plot"]["right"] - r["plot"]["left"] >= 0.55 * width  # large: most of the window
+    # our messages are on the page, not pop-ups over the tabs
+    assert not r["notes"], r
+    shot(page, f"layout_{width}x{height}")
     page.close()
