@@ -221,7 +221,9 @@ _ANN = dict(xref="paper", yref="paper", showarrow=False, font=dict(size=13), xan
 
 
 def _ax(title: str, domain, anchor: str, **kw) -> dict:
-    return dict(AXIS, title=dict(text=title, standoff=4), domain=domain, anchor=anchor, **kw)
+    # fixed margins instead of automargin: automargin makes Plotly lay the figure out again per
+    # axis, which costs the live view tens of milliseconds in the browser on every change
+    return dict(AXIS, title=dict(text=title, standoff=4), domain=domain, anchor=anchor, **dict(dict(automargin=False), **kw))
 
 
 def abcd_marks(r) -> dict:
@@ -304,9 +306,9 @@ def overview_figure(*, units: dict, hyst: list, strib: list, slip: list, bottom:
         if role == "overlay":
             layout["xaxis5"] = dict(AXIS, overlaying="x", side="top", anchor="y", showgrid=False,
                                     title=dict(text=f"{label} displacement (µ{pu})", standoff=2),
-                                    tickfont=dict(color=COLORS[4]), automargin=True)
+                                    tickfont=dict(color=COLORS[4]), automargin=False)
             layout["yaxis5"] = dict(AXIS, overlaying="y", side="right", anchor="x", showgrid=False,
-                                    tickfont=dict(color=COLORS[4]), automargin=True)
+                                    tickfont=dict(color=COLORS[4]), automargin=False)
     if not has_loop:
         ann.append(dict(_ANN, x=0.22, y=0.76, xanchor="center", yanchor="middle", font=dict(size=12, color="#555"),
                         text="the static model has no presliding:<br>friction jumps at v = 0, no hysteresis curve"))
@@ -378,7 +380,7 @@ def overview_figure(*, units: dict, hyst: list, strib: list, slip: list, bottom:
     layout.update(
         title=dict(text=OVERVIEW_TITLE, x=0.0, y=0.995, font=dict(size=1, color="white")),
         annotations=ann, plot_bgcolor="white", paper_bgcolor="white", hovermode="closest",
-        font=dict(family="Open Sans, Arial, sans-serif", size=11), margin=dict(l=55, r=45, t=26, b=40),
+        font=dict(family="Open Sans, Arial, sans-serif", size=11), margin=dict(l=62, r=48, t=26, b=44),
         legend=dict(orientation="h", x=0.0, y=1.04, xanchor="left", yanchor="bottom", font=dict(size=11)),
     )
     return go.Figure(dict(data=data, layout=layout), _validate=False)

@@ -85,7 +85,7 @@ class Explorer:
         self.link = None
 
         self.model.gui_3d.on_update(lambda _: self._toggle_3d())
-        threading.Thread(target=self._animate, daemon=True, name=f"3d-{client.client_id}").start()
+        threading.Thread(target=self._background, daemon=True, name=f"page-{client.client_id}").start()
         self.model.request()
 
     @staticmethod
@@ -112,7 +112,7 @@ class Explorer:
     def _fill_window(self) -> None:
         """Widen the plot panel over the (empty) 3D canvas once the browser reported its size."""
         t0 = time.time()
-        while not self._stop.wait(0.2) and time.time() - t0 < 30:
+        while not self._stop.wait(0.2) and time.time() - t0 < 10:
             try:
                 w = int(self.ctx.client.camera.image_width)
             except Exception:  # no camera message yet
@@ -122,11 +122,19 @@ class Explorer:
                     self.panel.set_width(VIEW_WIDTH + w - 24)
                 return
 
-    def _animate(self) -> None:
-        """Time-lapse of the stick-slip run: the link turns with the joint, orange while slipping."""
+    def _background(self) -> None:
+        """The page's slow loop: table refresh, session saving, the optional 3D time-lapse of
+        the stick-slip run (the link turns with the joint, orange while slipping)."""
         self._fill_window()
-        frame = 0
+        tick, frame, last_save = 0, 0, 0.0
         while not self._stop.wait(0.05):
+            tick += 1
+            now = time.time()
+            if tick % 8 == 0:
+                self.sets.refresh()
+            if self.ctx.dirty and now - last_save > 1.0 and not self.model.job.busy():
+                self.ctx.save()
+                last_save = now
             r = getattr(self.model, "last_slip", None)
             if self.link is None or r is None or self.model.job.busy():
                 continue
@@ -139,6 +147,8 @@ class Explorer:
 
     def stop(self) -> None:
         self._stop.set()
+        if self.ctx.dirty:
+            self.ctx.save()
         for tab in (self.model, self.data, self.diagnose, self.experiment):
             tab.job.stop()
 

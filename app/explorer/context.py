@@ -42,6 +42,7 @@ class Context:
     proposal: Proposal | None = None
     listeners: list = field(default_factory=list)  # called with (reason) when params/proposal/recording change
     status: Callable[[str], None] = lambda text: None
+    dirty: bool = False  # the session changed since it was last saved
 
     @property
     def params(self) -> FrictionParams:
@@ -63,6 +64,7 @@ class Context:
 
     def save(self) -> None:
         with self.lock:
+            self.dirty = False
             err = self.store.save(self.session)
         if err:
             self.status(f"⚠ {err}")

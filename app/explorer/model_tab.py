@@ -23,7 +23,7 @@ from .controls import ParamControl, value_for
 from .fields import SIDE_MARK, fields_of, sanity_warnings, with_values
 from .jobs import JobThread
 
-LIVE_RAMP_RATE = 10.0  # force units/s: the live A→B→C→D ramp runs 10× faster than Fig. 10
+LIVE_RAMP_RATE = 20.0  # force units/s at Fs⁺ = 36: the live A→B→C→D ramp runs 20× faster than Fig. 10
 STICK_SLIP_S = 3.0
 MAX_DATA_SIM = 200_000  # samples of a recording the live view simulates (the rest is cut, and said)
 OVERVIEW_ASPECT = 0.66  # viser's aspect is height/width: 4 views fit 1280×720 above the fold
@@ -202,8 +202,9 @@ class ModelTab:
             for c in self.controls.values():
                 c.set_enabled(p.model in c.field.models)
             self._enabled_for = p.model
-        warn = sanity_warnings(p)
-        self.gui_warn.content = "\n\n".join(f"⚠ {w}" for w in warn)
+        warn = "\n\n".join(f"⚠ {w}" for w in sanity_warnings(p))
+        if warn != self.gui_warn.content:
+            self.gui_warn.content = warn
         self.request()
 
     def request(self) -> None:
@@ -280,4 +281,4 @@ class ModelTab:
         ctx.client.flush()
         self.redraw_times.append(time.perf_counter() - t0)
         self.last_slip = slip[0][2] if slip else None
-        ctx.save()
+        ctx.dirty = True  # saved by the page's background loop, off the interaction path

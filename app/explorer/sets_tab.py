@@ -86,6 +86,7 @@ class SetsTab:
     def __init__(self, ctx: Context, gui: viser.GuiApi, start_label: str):
         self.ctx = ctx
         self.gui = gui
+        self._shown = None
         s = ctx.session
         if not s.history:
             s.add(start_label, s.params)
@@ -204,7 +205,18 @@ class SetsTab:
         if e is not None:
             self.gui_compare.content = compare_table(self.ctx.params, e.params, "current", e.label)
 
+    def refresh(self) -> None:
+        """Bring the table and the comparison up to the current model (called by the page's
+        background loop a few times a second, so slider moves do not wait for it)."""
+        if self._shown is not self.ctx.params:
+            self._shown = self.ctx.params
+            self.gui_table.content = params_table(self._shown)
+            self._show_compare()
+
     def _on_change(self, reason: str) -> None:
+        if reason == "edit":
+            return  # refresh() follows within a fraction of a second
+        self._shown = self.ctx.params
         self.gui_table.content = params_table(self.ctx.params)
         if reason in ("accepted", "restored", "loaded", "proposal"):
             titles = self._titles()
