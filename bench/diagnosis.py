@@ -18,9 +18,9 @@ import time
 
 def _diagnose_case(kind, seed, effects, base="oracle"):
     from leuven_friction.identify.diagnose import diagnose
-    from synth.hidden import make_case, oracle_params, to_recording
+    from synth.hidden import SUITE_RATE, make_case, oracle_params, to_recording
 
-    df, truth, case = make_case(kind, seed, effects)
+    df, truth, case = make_case(kind, seed, effects, rate=SUITE_RATE[kind])
     rec = to_recording(df, name=f"{case.label}.csv")
     if base == "oracle":
         params = oracle_params(truth)

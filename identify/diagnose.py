@@ -288,6 +288,21 @@ class Engine:
         self._cache = None
         self.sims = 0
 
+    def loss(self) -> dict:
+        """Least-squares loss: plain in friction; in position, soft-L1 beyond a few noise
+        floors, because one window where the open-loop plant runs off (stick-slip on the
+        falling Stribeck branch) would otherwise outweigh all the others."""
+        if self.c.space == "friction":
+            return {}
+        return {"loss": "soft_l1", "f_scale": 3.0 * self.c.noise}
+
+    def score(self, r: np.ndarray) -> float:
+        """The loss summed over residuals ``r`` (what cross-validation compares)."""
+        if self.c.space == "friction":
+            return float(np.sum(r**2))
+        f = 3.0 * self.c.noise
+        return float(np.sum(2.0 * f * f * (np.sqrt(1.0 + (r / f) ** 2) - 1.0)))
+
     def set_base(self, params: FrictionParams) -> None:
         self.p = params.replace(effects=())
         self._cache_key = None
@@ -375,12 +390,15 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
         return g, kk, entries
 
     idx = _thinned(mask)
+    if engine.c.space == "position":
+        max_nfev = min(max_nfev, 12)  # every evaluation simulates the whole recording
 
     def resid(u):
         g, kk, entries = unpack(u)
         return (meas - engine.predict(g, kk, entries))[idx]
 
-    sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4, max_nfev=max_nfev)
+    sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4, max_nfev=max_nfev,
+                        **engine.loss())
     g, kk, entries = unpack(sol.x)
     pred = engine.predict(g, kk, entries)
     return FitResult(g, kk, entries, pred, float(np.sum((meas - pred)[mask] ** 2)), sol.x)
@@ -419,7 +437,8 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     hi = np.concatenate([[math.log(5), math.log(20), math.log(40.0 / n0), math.log(100)],
                          [f[3] for t in terms for f in t.free]])
     u0 = np.clip(np.concatenate([[0.0, 0.0, 0.0, 0.0], prior_u]), lo + 1e-9, hi - 1e-9)
-    sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3, max_nfev=40)
+    sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3,
+                        max_nfev=40 if engine.c.space == "friction" else 15, **engine.loss())
     _, _, p, _ = unpack(sol.x)
     engine.set_base(p)
     return p
@@ -595,8 +614,9 @@ def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list,
     sse = np.zeros(len(masks))
     preds = []
     for i, held in enumerate(masks):
-        fr = _fit(engine, terms, u_full, ~held, fit_k0=False, k0=k0, max_nfev=25)
-        sse[i] = float(np.sum((meas - fr.pred)[held] ** 2))
+        fr = _fit(engine, terms, u_full, ~held, fit_k0=False, k0=k0,
+                  max_nfev=25 if engine.c.space == "friction" else 5)
+        sse[i] = engine.score((meas - fr.pred)[held])
         preds.append(fr.pred)
     return sse, preds
 
@@ -751,6 +771,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     null = _fit(engine, prior_terms, np.concatenate([[0.0, 0.0], prior_u]), allm, fit_k0=True, k0=1.0)
     k0 = null.k0
     masks = fold_masks(n, s.folds, s.blocks_per_fold, cmp_.windows)
+    presliding = np.abs(cmp_.velocity) <= cmp_.v_rest
     regimes_m = regime_masks(cmp_)
     steps = [{"label": "model as given", "name": None, "params": None, "rms": rms0},
              {"label": f"level ×{null.g:.3f}, stiffness ×{k0:.3f} refitted", "name": None, "params": None,
@@ -780,13 +801,18 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 continue
             terms = cur_terms + [term]
             fr = _fit(engine, terms, u0, allm, fit_k0=False, k0=k0)
-            sse, preds = cross_validate(engine, terms, fr.u, masks, k0)
+            _, preds = cross_validate(engine, terms, fr.u, masks, k0)
+            # a stiffness effect is judged where the presliding spring shows: at rest and in
+            # presliding (elsewhere it could only stand in for a misfit of the break-away)
+            where = presliding if EFFECTS[name].acts_on == "stiffness" else allm
+            sse = np.array([engine.score((meas - preds[i])[m & where]) for i, m in enumerate(masks)])
+            nsse = np.array([engine.score((meas - null_preds[i])[m & where]) for i, m in enumerate(masks)])
             # a fold where the candidate hardly changes the held-out prediction says nothing
-            informative = np.array([np.sum((preds[i] - null_preds[i])[m] ** 2) > INFORMATIVE * max(null_sse[i], 1e-300)
+            informative = np.array([np.sum((preds[i] - null_preds[i])[m & where] ** 2) > INFORMATIVE * max(nsse[i], 1e-300)
                                     for i, m in enumerate(masks)])
             n_eff = _effective_n(meas - fr.pred)
             dbic = n_eff * math.log(max(fr.rss, 1e-300) / max(rss_null, 1e-300)) + len(term.free) * math.log(n_eff)
-            evid.append(Evidence(name, fr.entries[-1]["params"], _rms(meas - fr.pred), sse, null_sse, informative, dbic,
+            evid.append(Evidence(name, fr.entries[-1]["params"], _rms(meas - fr.pred), sse, nsse, informative, dbic,
                                  fr.pred - cur.pred, fr))
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         base_rms = _rms(meas - cur.pred)

@@ -196,6 +196,9 @@ def oracle_params(truth):
                                     sigma1=float(truth.sigma1), inertia=float(truth.inertia), units=units, n=16.0)
 
 
+SUITE_RATE = {"robot_joint": 250.0, "linear_stage": 400.0, "tribometer": 200.0}  # Hz, to keep the suite short
+
+
 def suite(seeds_per_effect: int = 10, controls: int = 20, pair_seeds: int = 4, start: int = 1000) -> list:
     """The case list: every single effect on ``seeds_per_effect`` seeds (kinds in turn),
     ``controls`` seeds with nothing hidden, each pair on ``pair_seeds`` seeds, and the
