@@ -38,7 +38,8 @@ def _table(result_runs, labels) -> dict:
     if len(result_runs) > 1:
         table["run"] = np.repeat(np.asarray(labels, dtype=object), [len(r) for r in result_runs])
     for c in names:
-        table[c] = np.concatenate([r.columns()[c] for r in result_runs])
+        parts = [r.columns()[c] for r in result_runs]
+        table[c] = parts[0] if len(parts) == 1 else np.concatenate(parts)
     return table
 
 

@@ -105,13 +105,6 @@ def stribeck_pass(p, t, x, V, S):
         S[k] = slast
 
 
-@kernel
-def stribeck_array(p, v, out):
-    """S(v) per sample (F_s of the side at v = 0)."""
-    for k in range(v.shape[0]):
-        out[k] = stribeck(p, v[k], 1.0 if v[k] >= 0.0 else -1.0)
-
-
 # ---------------------------------------------------------------- transition curve F_d
 @helper
 def _segment(knots, a):

@@ -49,8 +49,9 @@ def bench_io(quick: bool = False, progress=print) -> dict:
             best = min((run_command(["simulate", "--input", str(src), "--out", str(d / f"out.{fmt}")])
                         for _ in range(2 if quick else 3)), key=lambda r: r["seconds"])
             out[f"simulate_{fmt}_to_{fmt}_s"] = best["seconds"]
+            out[f"simulate_{fmt}_to_{fmt}_cpu_s"] = best["cpu_seconds"]
             out[f"simulate_{fmt}_to_{fmt}_peak_rss_mb"] = best["peak_rss_mb"]
-            progress(f"simulate --input {n} rows {fmt} -> {fmt}: {best['seconds']:.2f} s, "
+            progress(f"simulate --input {n} rows {fmt} -> {fmt}: {best['seconds']:.2f} s ({best['cpu_seconds']:.2f} s CPU), "
                      f"peak {best['peak_rss_mb']:.0f} MB (write {out[f'io_write_{fmt}_s']:.2f} s, "
                      f"read {out[f'io_read_{fmt}_s']:.2f} s in-process)")
     return out

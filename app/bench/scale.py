@@ -39,11 +39,14 @@ def bench_scale(quick: bool = False, progress=print, sizes=None) -> dict:
             write_table({"time": np.concatenate([ramps["time"], ramps["time"][-1] + 1e-3 + runs["time"]]),
                          "position": np.concatenate([ramps["position"], runs["position"]])}, whole)
             sim = run_command(["simulate", "--input", str(whole), "--out", str(d / f"sim_{n}.csv")])
-            progress(f"simulate {n} rows: {sim['seconds']:.2f} s, peak {sim['peak_rss_mb']:.0f} MB")
+            progress(f"simulate {n} rows: {sim['seconds']:.2f} s ({sim['cpu_seconds']:.2f} s CPU), "
+                     f"peak {sim['peak_rss_mb']:.0f} MB")
             fit = run_command(["fit", *paths, "--out", str(d / f"fit_{n}.yaml")])
-            progress(f"fit {n} rows: {fit['seconds']:.2f} s, peak {fit['peak_rss_mb']:.0f} MB")
+            progress(f"fit {n} rows: {fit['seconds']:.2f} s ({fit['cpu_seconds']:.2f} s CPU), "
+                     f"peak {fit['peak_rss_mb']:.0f} MB")
             for what, r in (("simulate", sim), ("fit", fit)):
                 out[f"scale_{what}_{n}_s"] = r["seconds"]
+                out[f"scale_{what}_{n}_cpu_s"] = r["cpu_seconds"]
                 out[f"scale_{what}_{n}_s_per_million_rows"] = r["seconds"] / n * 1e6
                 out[f"scale_{what}_{n}_peak_rss_mb"] = r["peak_rss_mb"]
             for f in d.iterdir():
