@@ -71,7 +71,7 @@ def _thin(branches):
     for b in keep:
         if len(b.force) > MAX_POINTS:
             idx = np.unique(np.linspace(0, len(b.force) - 1, MAX_POINTS).astype(int))
-            b = type(b)(force=b.force[idx], displacement=b.displacement[idx], D=b.D, driven=b.driven)
+            b = type(b)(force=b.force[idx], displacement=b.displacement[idx], D=b.D, driven=b.driven, t_end=b.t_end)
         out.append(b)
     return out
 

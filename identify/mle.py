@@ -82,6 +82,7 @@ class Branch:
     displacement: np.ndarray
     D: float
     driven: str = "force"
+    t_end: float = float("nan")  # time of the branch's last sample in its recording
 
 
 def branch_prediction(br: Branch, z_knots, F_knots, n, offset):

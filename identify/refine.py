@@ -56,10 +56,10 @@ def _smooth(x, w):
 
 
 def experiments_of(preps: list[Prepared], max_samples: int, z_first: float = np.inf,
-                   v_slide: float = np.inf) -> list[Experiment]:
+                   v_slide: float = np.inf, ends: dict | None = None) -> list[Experiment]:
     """The simulated stretches: whole motion-driven recordings; for force-driven ones the
-    opening stretch up to the first speed above ``v_slide`` (gross sliding: 0.3 × the slowest
-    level, as for the presliding branches) or 20 velocity noise floors, whichever is larger."""
+    opening stretch up to the end of the last presliding branch found in it (``ends``:
+    source → time), or else to the first speed above ``v_slide`` (gross sliding)."""
     out = []
     for pr in preps:
         rec, th = pr.rec, pr.th
@@ -80,6 +80,8 @@ def experiments_of(preps: list[Prepared], max_samples: int, z_first: float = np.
         elif pr.force is not None:
             moving = np.flatnonzero(np.abs(pr.velocity) > max(20.0 * th.v_floor, v_slide if np.isfinite(v_slide) else 0.0))
             end = int(moving[0]) if len(moving) else len(rec.time)
+            if ends and pr.source in ends:
+                end = min(end, int(np.searchsorted(rec.time, ends[pr.source], side="right")))
             if pr.chunks and pr.chunks[0][1] < end:
                 end = pr.chunks[0][1]
             if end < 200:
@@ -99,11 +101,11 @@ class _Vector:
     """The estimated parameters as one vector: S(v) entries not held, and the transition
     curve's ordinates as log-increments (F_d stays strictly increasing)."""
 
-    def __init__(self, params, held, sigma1_start=None):
+    def __init__(self, params, held, sigma1_start=None, stribeck_free=True):
         self.params = params
         self.sigma1_start = sigma1_start  # None: σ1 stays held; else refined (log scale) from here
         self.s_paths = [(side, k) for side in ("positive", "negative") for k in NAMES
-                        if f"stribeck.{side}.{k}" not in held]
+                        if f"stribeck.{side}.{k}" not in held] if stribeck_free else []
         tc = params.transition_curve
         self.has_tc = "transition_curve" not in held and tc.kind == "piecewise_linear"
         self.nk = len(tc.F) - 1 if self.has_tc else 0
@@ -197,7 +199,13 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     tc = res.params.transition_curve
     z1 = float(tc.z[1]) if tc.kind == "piecewise_linear" and len(tc.z) > 1 else np.inf
     v_slide = 0.3 * float(np.min(np.abs(res.levels.velocity))) if res.levels is not None and len(res.levels.velocity) else np.inf
-    exps = experiments_of(preps, max_samples, z1, v_slide)
+    ends = {}
+    for d in res.datasets:
+        for b in d.branches:
+            if b.driven == "force" and np.isfinite(b.t_end):
+                src = d.name.rsplit(" (", 1)[0]
+                ends[src] = max(ends.get(src, -np.inf), b.t_end)
+    exps = experiments_of(preps, max_samples, z1, v_slide, ends)
     if not exps:
         res.refinement = {"done": False, "reason": "no recorded input to simulate along (neither a friction column "
                           "nor an opening presliding stretch driven by the applied force)"}
@@ -211,7 +219,12 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     if free_sigma1 and lv is not None and len(lv.velocity):
         fc = max(abs(res.params.stribeck.positive.Fc), abs(res.params.stribeck.negative.Fc))
         s1 = min(res.params.sigma1, 1e-3 * fc / float(np.min(np.abs(lv.velocity)))) or 1e-3 * fc / float(np.min(np.abs(lv.velocity)))
-    vec = _Vector(res.params, res.held, sigma1_start=s1)
+    # S(v) is refined where friction is measured along the motion. On force-driven presliding
+    # alone F_s enters only through eq. (5)'s saturation D = F_s - F_b, so a presliding shape
+    # the Leuven curve cannot follow exactly would be absorbed into the Stribeck peak: there
+    # the Markov S(v) stays and only the transition curve is refined.
+    motion = any(e.kind == "motion" for e in exps)
+    vec = _Vector(res.params, res.held, sigma1_start=s1, stribeck_free=motion)
     if not vec.s_paths and not vec.nk:
         res.refinement = {"done": False, "reason": "every parameter is held"}
         return res
@@ -292,7 +305,8 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     b_all = float(np.sqrt(np.mean(r0 ** 2)))
     a_all = float(np.sqrt(np.mean(fit.fun ** 2)))
     res.refinement = {"done": True, "rms_before": b_all, "rms_after": a_all, "chi2_reduced": chi2_red,
-                      "what": "weighted residuals (1 = the noise floor); per experiment in data units: "
+                      "what": ("all estimated parameters" if motion else "transition curve only (S(v) from the Markov step)")
+                              + "; weighted residuals (1 = the noise floor); per experiment in data units: "
                               + "; ".join(f"{k}: {before[k]:.3g} -> {after[k]:.3g}" for k in before),
                       "per_experiment_before": before, "per_experiment_after": after, "evaluations": int(fit.nfev)}
     return res

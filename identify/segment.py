@@ -401,7 +401,7 @@ def force_branches(prep: Prepared, Fs_pos: float, Fs_neg: float, v_max: float, *
             if m < min_points or dF[m - 1] < 10 * th.f_noise:
                 continue
             out.append(Branch(force=np.maximum.accumulate(dF[:m]), displacement=direction * x[a:a + m], D=float(D),
-                              driven="force"))
+                              driven="force", t_end=float(rec.time[a0 + a + m - 1])))
     return out
 
 
