@@ -107,24 +107,23 @@ def test_units_from_header_are_converted(tmp_path):
     assert rec.friction[0] == pytest.approx(1e-6)
 
 
-def test_fit_cli_writes_loadable_yaml_and_nothing_on_error(tmp_path):
-    import subprocess
-    import sys
-
+def test_fit_cli_writes_loadable_yaml_and_nothing_on_error(tmp_path, capsys):
+    from leuven_friction.app.cli import main
     from leuven_friction.identify.paramfile import load_params
 
     out = tmp_path / "p.yaml"
-    r = subprocess.run([sys.executable, "-m", "leuven_friction.app.cli", "fit", "sample_data/constant_velocity.csv", "--out", str(out)],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
+    rc = main(["fit", "sample_data/constant_velocity.csv", "--out", str(out)])
+    assert rc == 0, capsys.readouterr().err
+    capsys.readouterr()
     p = load_params(out)
     assert abs(p.stribeck.positive.Fc - 27.0) < 4 * p.uncertainty["stribeck.positive.Fc"]
     assert list(p.provenance["data"]) == ["sample_data/constant_velocity.csv"]  # records hold tuples
     bad = tmp_path / "bad.csv"
     bad.write_text("time,position\n0,0\n1,1\n")
     out2 = tmp_path / "q.yaml"
-    r = subprocess.run([sys.executable, "-m", "leuven_friction.app.cli", "fit", str(bad), "--out", str(out2)], capture_output=True, text=True)
-    assert r.returncode == 2 and "Traceback" not in r.stderr and not out2.exists()
+    assert main(["fit", str(bad), "--out", str(out2)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and not out2.exists()
 
 
 @pytest.mark.slow
