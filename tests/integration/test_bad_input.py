@@ -149,3 +149,18 @@ def test_cli_turns_only_user_errors_into_one_line(monkeypatch):
     monkeypatch.setattr(cli_module, "cmd_bench", lambda args: 1 / 0)
     with pytest.raises(ZeroDivisionError):
         main(["bench", "--quick"])
+
+
+def test_fit_writes_the_units_of_the_data(tmp_path, capsys):
+    # the shipped constant-velocity sample re-labelled as a linear stage logged in mm and µN:
+    # the loader converts to m and N, and the parameter file must say m and N (not rad, N·m)
+    import pandas as pd
+
+    df = pd.read_csv(SAMPLE)
+    lin = pd.DataFrame({"Time (s)": df["time"], "Position [mm]": df["position"] * 1e3, "Force (uN)": df["torque"] * 1e6})
+    lin.to_csv(tmp_path / "stage.csv", index=False)
+    rc, _, err = run(capsys, "fit", tmp_path / "stage.csv", "--out", tmp_path / "p.yaml")
+    assert rc == 0, err
+    p = yaml.safe_load((tmp_path / "p.yaml").read_text())
+    assert p["units"] == {"position": "m", "force": "N", "time": "s"}
+    assert abs(p["stribeck"]["positive"]["Fc"] - 27.0) < 1.0  # N, the same numbers as the sample's N·m
