@@ -121,7 +121,7 @@ def fit_side(levels: Levels, sign: int, start: dict | None = None, hold: dict | 
         starts = uniq
     best = None
     for x0 in starts:
-        r = least_squares(resid, x0, jac=jac, bounds=(lo_f, hi_f), method="trf", x_scale="jac", max_nfev=2000)
+        r = least_squares(resid, x0, jac=jac, bounds=(lo_f, hi_f), method="trf", x_scale="jac", max_nfev=300)
         if best is None or r.cost < best.cost:
             best = r
     J = best.jac
