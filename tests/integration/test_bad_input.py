@@ -164,3 +164,34 @@ def test_fit_writes_the_units_of_the_data(tmp_path, capsys):
     p = yaml.safe_load((tmp_path / "p.yaml").read_text())
     assert p["units"] == {"position": "m", "force": "N", "time": "s"}
     assert abs(p["stribeck"]["positive"]["Fc"] - 27.0) < 1.0  # N, the same numbers as the sample's N·m
+
+
+def test_port_zero_picks_a_free_port_and_prints_it(tmp_path):
+    # the real server, in a child process: it must listen on the port it prints
+    import re
+    import subprocess
+    import sys
+    import threading
+
+    proc = subprocess.Popen([sys.executable, "-m", "leuven_friction.app.cli", "serve", "--port", "0"],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, cwd=tmp_path)
+    lines = []
+    reader = threading.Thread(target=lambda: lines.extend(iter(proc.stdout.readline, "")), daemon=True)
+    reader.start()
+    try:
+        url = None
+        for _ in range(600):  # a safety net against a hang, not a speed requirement
+            m = next((re.search(r"explorer at http://127\.0\.0\.1:(\d+)", ln) for ln in list(lines)
+                      if "explorer at" in ln), None)
+            if m or proc.poll() is not None:
+                url = m
+                break
+            reader.join(0.5)
+        assert url, "".join(lines)
+        port = int(url.group(1))
+        assert port != 0
+        with socket.create_connection(("127.0.0.1", port), timeout=10):
+            pass
+    finally:
+        proc.terminate()
+        proc.wait(timeout=30)
