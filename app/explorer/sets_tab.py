@@ -8,7 +8,6 @@ proposals, loaded files, their own edits — stays in the history, to compare an
 from __future__ import annotations
 
 import viser
-import yaml
 
 from ...identify.paramfile import params_to_yaml
 from ...model import FrictionParams, default_params
@@ -68,18 +67,15 @@ def compare_table(a: FrictionParams, b: FrictionParams, name_a: str, name_b: str
 
 
 def params_from_yaml(content: bytes, name: str) -> FrictionParams:
+    """An uploaded parameter file, read and checked exactly as the command line reads one
+    (``identify.paramfile``: size and knot limits, an empty file, values YAML cannot build)."""
+    from ...identify.paramfile import params_from_yaml as parse
+
     try:
-        data = yaml.safe_load(content.decode("utf-8-sig"))
-    except (yaml.YAMLError, UnicodeDecodeError) as e:
-        mark = getattr(e, "problem_mark", None)
-        where = f" line {mark.line + 1}" if mark is not None else ""
-        raise ParameterError(f"{name}:{where} not valid YAML ({getattr(e, 'problem', None) or e})") from None
-    try:
-        return FrictionParams.from_dict(data)
-    except ParameterError as e:
-        raise ParameterError(f"{name}: {e}") from None
-    except (TypeError, ValueError, OverflowError) as e:
-        raise ParameterError(f"{name}: {e}") from None
+        text = content.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise ParameterError(f"{name}: not a UTF-8 text file (byte {e.start})") from None
+    return parse(text, name)
 
 
 class SetsTab:
