@@ -185,6 +185,11 @@ def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_fi
         time.sleep(1.0)
         shot(page, "after_accept_1280")
 
+        # a long job can be cancelled, and says so
+        page.get_by_role("button", name="Diagnose").click()
+        page.get_by_role("button", name="Cancel diagnosis").click()
+        wait_text(page, "Diagnosis cancelled", 120)
+        assert page.get_by_role("button", name="Diagnose").first.is_enabled()
         # diagnose: a proposal to discard, or a plain "nothing missing"
         page.get_by_role("button", name="Diagnose").click()
         page.wait_for_selector("text=Cancel diagnosis", timeout=30_000)
@@ -245,4 +250,27 @@ def test_layout_fits_the_screen(chromium, server, width, height):
     # our messages are on the page, not pop-ups over the tabs
     assert not r["notes"], r
     shot(page, f"layout_{width}x{height}")
+    page.close()
+
+
+def test_plot_saved_as_png_and_csv(chromium, server, tmp_path):
+    import csv
+
+    page = open_app(chromium, server[0])
+    traces = plot_traces(page, OVERVIEW)
+    with page.expect_download(timeout=30_000) as dl:
+        page.get_by_role("button", name="Save plot data (CSV)").first.click()
+    out = tmp_path / "overview.csv"
+    dl.value.save_as(str(out))
+    rows = list(csv.DictReader(out.open()))
+    drawn = next(t for t in traces if t["name"] == "A–D")
+    saved = [r for r in rows if r["trace"] == "A–D"]
+    assert [float(r["y"]) for r in saved] == pytest.approx(drawn["y"], rel=1e-9)  # the numbers behind the plot
+    # Plotly's own PNG button (the only one kept in the mode bar)
+    page.locator(".js-plotly-plot").first.hover()
+    with page.expect_download(timeout=30_000) as dl:
+        page.locator('.js-plotly-plot .modebar-btn[data-title="Download plot as a PNG"]').first.click()
+    png = tmp_path / "overview.png"
+    dl.value.save_as(str(png))
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
     page.close()
