@@ -91,6 +91,11 @@ def test_scientific_notation_in_a_number_box(chromium, server):
     box.press("Enter")
     wait_plot(page, OVERVIEW, after2)
     assert table_value(page, "Fs⁺") == 250.0 and table_value(page, "vs⁺") == 0.005
+    # physically odd but valid: |Fc| > |Fs| is applied and warned about
+    text_box(page, "Fc⁺ (N·m)").fill("300")
+    text_box(page, "Fc⁺ (N·m)").press("Enter")
+    wait_text(page, "friction would rise with speed", 15)
+    assert table_value(page, "Fc⁺") == 300.0
     shot(page, "number_entry")
     page.close()
 
@@ -229,6 +234,21 @@ def test_load_yaml_in_the_page(chromium, server, tmp_path):
     wait_plot(page, OVERVIEW, before)
     assert text_box(page, FS).input_value() == "50"
     assert table_value(page, "Fc⁺") == pytest.approx(41.5)
+    # the history holds the start and the loaded file: compare, then restore the start
+    page.get_by_role("tab", name="Parameter sets").click()
+    start_title = page.locator("xpath=//label[text()='set']/following::input[1]").input_value()
+    assert "loaded stage_axis.yaml" in start_title  # the newest set is selected
+    page.locator("xpath=//label[text()='set']/following::input[1]").click()
+    page.get_by_role("option", name=re.compile(r"^1\. start")).click()
+    compare = page.locator("xpath=//*[contains(text(), 'Restore this set')]/following::table[1]").inner_text()
+    assert "50" in compare and "36" in compare  # Fs⁺ now vs at the start
+    page.get_by_role("button", name="Restore this set").click()
+    time.sleep(1.0)
+    assert table_value(page, "Fs⁺") == pytest.approx(36.0)
+    f2 = tmp_path / "stage_axis_again.yaml"  # (the same file twice is not a new upload for the browser)
+    f2.write_text(f.read_text())
+    upload_for(page, "Load parameter YAML").set_input_files(str(f2))
+    wait_text(page, "Loaded stage_axis_again.yaml", 30)
     # a broken file is refused with its name, and changes nothing
     bad = tmp_path / "broken.yaml"
     bad.write_text("stribeck: [1, 2\n")
