@@ -45,6 +45,8 @@ UNITS = {
     "deg/s": (np.pi / 180, "rad/s"), "c": (1.0, "degC"), "degc": (1.0, "degC"), "°c": (1.0, "degC"), "k": (1.0, "K"),
 }
 
+_KNOWN_NAMES = frozenset(a for names in ALIASES.values() for a in names)
+
 MIN_SAMPLES = 10
 
 
@@ -135,17 +137,20 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     if text is None:
         from .io import read_table_file
 
-        df = read_table_file(path)
+        # only the columns a signal can come from: the other columns of a wide file cost nothing
+        explicit = set((columns or {}).values())
+        df = read_table_file(path, usecols=lambda c: str(c) in explicit or _split_header(c)[0] in _KNOWN_NAMES)
     else:
         df = _read_table(path, text)
-    if df.shape[1] == 0 or len(df) == 0:
+    in_file = [str(c) for c in df.attrs.get("columns_in_file", df.columns)]
+    if not in_file or (df.shape[1] > 0 and len(df) == 0):
         raise DataError(f"{path}: no data rows under the header")
 
     mapping = dict(columns or {})
     headers = {str(c): _split_header(c) for c in df.columns}
     for sig, col in mapping.items():
         if col not in headers:
-            raise DataError(f"{path}: column {col!r} given for {sig} is not in the file (columns: {', '.join(headers)})")
+            raise DataError(f"{path}: column {col!r} given for {sig} is not in the file (columns: {', '.join(in_file)})")
     taken = set(mapping.values())
     for sig in SIGNALS:
         if sig in mapping:
@@ -158,7 +163,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     missing = [s for s in require if s not in mapping]
     if missing:
         raise DataError(
-            f"{path}: no column for {', '.join(missing)} (columns: {', '.join(headers)}; "
+            f"{path}: no column for {', '.join(missing)} (columns: {', '.join(in_file)}; "
             f"name them with --columns {missing[0]}=<column>)"
         )
 
@@ -190,7 +195,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             notes.append(f"{col}: no unit in the header, assumed SI")
         setattr(rec, sig, values)
         rec.columns[sig] = col
-    ignored = [c for c in headers if c not in mapping.values()]
+    ignored = [c for c in in_file if c not in mapping.values()]
     if ignored:
         notes.append(f"ignored columns: {', '.join(ignored)}")
     rec.notes = notes

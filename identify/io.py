@@ -91,9 +91,15 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
     if len(text) == SNIFF_BYTES and len(lines) > 1:
         lines = lines[:-1]  # the last line of the block may be cut
     sep, decimal = sniff(lines)
+    opts = dict(sep=sep, engine="c" if sep != r"\s+" else "python", comment="#", skip_blank_lines=True,
+                decimal=decimal, encoding="utf-8-sig")
     try:
-        return pd.read_csv(path, sep=sep, engine="c" if sep != r"\s+" else "python", comment="#",
-                           skip_blank_lines=True, decimal=decimal, encoding="utf-8-sig", usecols=usecols)
+        if usecols is None:
+            return pd.read_csv(path, **opts)
+        names = [str(c) for c in pd.read_csv(path, nrows=0, **opts).columns]
+        df = pd.read_csv(path, usecols=lambda c: usecols(str(c)), **opts)
+        df.attrs["columns_in_file"] = names
+        return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
         raise DataError(f"{path}: not a readable CSV/TSV table ({msg})") from None
@@ -118,11 +124,13 @@ def read_parquet_file(path: Path, usecols: Callable[[str], bool] | None = None):
         schema = pq.read_schema(path)
         names = [n for n in schema.names if usecols is None or usecols(n)]
         table = pq.read_table(path, columns=names)
+        df = table.to_pandas()
     except OSError as e:
         raise DataError(f"{path}: cannot read ({getattr(e, 'strerror', None) or str(e).splitlines()[0]})") from None
     except (pa.ArrowInvalid, pa.ArrowNotImplementedError) as e:
         raise DataError(f"{path}: not a readable Parquet file ({str(e).splitlines()[0]})") from None
-    return table.to_pandas()
+    df.attrs["columns_in_file"] = list(schema.names)
+    return df
 
 
 # ---------------------------------------------------------------- MATLAB
@@ -162,13 +170,16 @@ def read_mat_file(path: Path, usecols: Callable[[str], bool] | None = None):
     for name, a in columns.items():
         lengths.setdefault(len(a), []).append(name)
     n = max(lengths, key=lambda k: (len(lengths[k]), k))  # the length most vectors share
-    keep = {k: v for k, v in columns.items() if len(v) == n and (usecols is None or usecols(k))}
-    return pd.DataFrame(keep)
+    same = [k for k, v in columns.items() if len(v) == n]
+    df = pd.DataFrame({k: columns[k] for k in same if usecols is None or usecols(k)}, index=pd.RangeIndex(n))
+    df.attrs["columns_in_file"] = same
+    return df
 
 
 def read_table_file(path, usecols: Callable[[str], bool] | None = None):
     """The table in ``path`` as a DataFrame (CSV/TSV, Parquet or .mat by suffix); ``usecols``
-    keeps only the columns for which it is true."""
+    keeps only the columns for which it is true (the names of all the file's columns are then
+    in ``df.attrs["columns_in_file"]``)."""
     path = Path(path)
     if not path.exists():
         raise DataError(f"{path}: cannot read (No such file or directory)")

@@ -61,7 +61,7 @@ def initial_state(params: FrictionParams, fh0: float = 0.0, stack_depth: int = 6
     st = L.new_state(stack_depth)
     K.init_state(st, p, fh0)
     if params.model == "lugre" and params.sigma0:
-        st[L.S_Z] = fh0 / params.sigma0
+        L.State(st).z = fh0 / params.sigma0
     return st
 
 

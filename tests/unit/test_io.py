@@ -124,3 +124,30 @@ def test_simulate_input_output_formats(tmp_path, fmt, kuka):
     # CSV keeps ten significant digits; Parquet keeps the doubles
     np.testing.assert_allclose(out["friction_force"], F, rtol=1e-9 if fmt == "csv" else 0, atol=1e-12)
     assert not list(tmp_path.glob(".*.part"))  # nothing left staged
+
+
+def test_a_wide_file_reads_only_the_signal_columns(tmp_path):
+    rng = np.random.default_rng(5)
+    n = 2000
+    cols = {"time": np.arange(n) * 1e-3, "position": rng.normal(size=n), "torque": rng.normal(size=n)}
+    cols.update({f"channel {i}": rng.normal(size=n) for i in range(30)})
+    formats = ["csv"]
+    try:
+        import pyarrow  # noqa: F401
+
+        formats.append("parquet")
+    except ImportError:
+        pass
+    for fmt in formats:
+        write_table(cols, tmp_path / f"wide.{fmt}")
+        df = read_table_file(tmp_path / f"wide.{fmt}", usecols=lambda c: not c.startswith("channel"))
+        assert list(df.columns) == ["time", "position", "torque"]
+        assert len(df.attrs["columns_in_file"]) == 33
+        rec = load_recording(tmp_path / f"wide.{fmt}")
+        np.testing.assert_allclose(rec.force, cols["torque"], rtol=1e-9)  # CSV: ten digits
+        # what was left out is still named, as before
+        assert any(note.startswith("ignored columns: channel 0, channel 1") for note in rec.notes)
+        narrow = {k: v for k, v in cols.items() if k not in ("position", "torque")}
+        write_table(narrow, tmp_path / f"nopos.{fmt}")
+        with pytest.raises(DataError, match=r"no column for position \(columns: time, channel 0"):
+            load_recording(tmp_path / f"nopos.{fmt}", require=("time", "position"))
