@@ -103,6 +103,8 @@ class _Vector:
 
     def __init__(self, params, held, sigma1_start=None, stribeck_free=True, curve_free=True):
         self.params = params
+        # Coulomb sides: Fs is held *at Fc* and must follow it
+        self.tied = [side for side in ("positive", "negative") if "held at Fc" in held.get(f"stribeck.{side}.Fs", "")]
         self.sigma1_start = sigma1_start  # None: σ1 stays held; else refined (log scale) from here
         self.s_paths = [(side, k) for side in ("positive", "negative") for k in NAMES
                         if f"stribeck.{side}.{k}" not in held] if stribeck_free else []
@@ -123,6 +125,8 @@ class _Vector:
         sides = {side: {k: getattr(getattr(p.stribeck, side), k) for k in NAMES} for side in ("positive", "negative")}
         for (side, k), v in zip(self.s_paths, theta):
             sides[side][k] = float(v)
+        for side in self.tied:
+            sides[side]["Fs"] = sides[side]["Fc"]
         p = p.replace(stribeck=Stribeck(positive=StribeckSide(**sides["positive"]), negative=StribeckSide(**sides["negative"])))
         if self.has_tc:
             ns = len(self.s_paths)
@@ -275,7 +279,8 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     except (ValueError, np.linalg.LinAlgError) as e:
         res.refinement = {"done": False, "reason": f"the simulation-based least squares failed ({e})"}
         return res
-    if not (fit.cost < 0.9 * 0.5 * float(r0 @ r0)) or (loss == "linear" and not (np.mean(fit.fun ** 2) < 0.9 * np.mean(r0 ** 2))):
+    after_try = rms(fit.x)
+    if not (fit.cost < 0.9 * 0.5 * float(r0 @ r0)) or not all(after_try[k] < 0.9 * before[k] for k in before):
         res.refinement = {"done": False, "reason": "simulating the full model lowered the cost by less than 10 %: kept "
                           "the Markov and maximum-likelihood estimates (residual RMS "
                           + "; ".join(f"{k}: {v:.3g}" for k, v in before.items()) + ")", "rms_before": before}
