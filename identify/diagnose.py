@@ -39,6 +39,7 @@ from scipy.optimize import least_squares
 from scipy.signal import savgol_filter
 
 from ..model import FrictionParams, TransitionCurve, simulate_displacement, simulate_force
+from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, significant_reversals
 from .data import DataError, Recording
 
@@ -78,6 +79,7 @@ class Comparison:
     notes: list = field(default_factory=list)
     flipped: bool = False
     z_presliding: float = 0.0  # the model's presliding range (position units)
+    params: FrictionParams | None = None  # the model the comparison was set up for
 
     @property
     def unit(self) -> str:
@@ -231,7 +233,9 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
     T = float(t[-1] - t[0])
     dt = float(np.median(np.diff(t)))
     if name == "time_drift":
-        return Term(name, {"t0": float(t[0])}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(20 * dt), math.log(20 * T))))
+        # τ ≥ T/30: a faster "drift" is a step between the first experiments and the rest of
+        # the session, which a schedule ordered in time makes out of any misfit
+        return Term(name, {"t0": float(t[0])}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(T / 30), math.log(20 * T))))
     if name == "normal_load":
         n = cmp_.load
         moving = np.abs(cmp_.velocity) > cmp_.v_rest
@@ -245,7 +249,9 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
     if name == "cyclic_softening":
         nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1])
         return Term(name, {"min_excursion": cmp_.min_excursion},
-                    (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(0.3), math.log(max(10 * nrev, 1.0)))))
+                    # n_c ≥ 3: a change complete within a couple of reversals is a constant
+                    # stiffness factor, which the alternative's κ0 already holds
+                    (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(3.0), math.log(max(10 * nrev, 10.0)))))
     if name == "presliding_stiffness":
         return Term(name, {}, (("kappa", "log", math.log(0.05), math.log(20.0)),))
     raise KeyError(name)
@@ -407,23 +413,32 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
 def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_u: np.ndarray,
                      mask: np.ndarray) -> FrictionParams:
     """Part of the alternative: the level g, the presliding stiffness κ0, the exponent n of
-    eq. (5) (how sharply presliding turns into sliding) and the micro-viscous σ1 of eq. (3),
-    refitted together by output error. Returns the parameters with n and σ1 updated (g and
-    κ0 are refitted again by the caller, with n and σ1 held)."""
+    eq. (5) (how sharply presliding turns into sliding), the micro-viscous σ1 of eq. (3) and
+    S(v) (Fs, Fc, vs, σ2 per side, each within a factor 1.5), refitted together by output
+    error: what an effect must beat is the best the base model can do on its own. Returns
+    the parameters with n, σ1 and S(v) updated (g and κ0 are refitted again by the caller)."""
     if params.model != "leuven":
         return params
+    from ..model import Stribeck, StribeckSide
+
     meas = engine.c.measured
     n0, s10 = float(params.n), float(max(params.sigma1, 1e-12))
-    nt = len(terms)
+    sp, sn = params.stribeck.positive, params.stribeck.negative
+    NS = 8  # S(v) per side: Fs, Fc, vs, σ2 as factors (δ held: it shapes what the levels rarely show)
+
+    def side(s, f):
+        return StribeckSide(Fs=s.Fs * f[0], Fc=s.Fc * f[1], vs=s.vs * f[2], delta=s.delta, sigma2=s.sigma2 * f[3])
 
     def unpack(u):
         g, kk, ln, ls = math.exp(u[0]), math.exp(u[1]), u[2], u[3]
-        entries, i = [], 4
+        fac = np.exp(u[4:4 + NS])
+        entries, i = [], 4 + NS
         for term in terms:
             m = len(term.free)
             entries.append(_entry(term, u[i:i + m]))
             i += m
-        return g, kk, params.replace(n=float(n0 * math.exp(ln)), sigma1=float(s10 * math.exp(ls))), entries
+        st = Stribeck(side(sp, fac[:4]), side(sn, fac[4:]))
+        return g, kk, params.replace(n=float(n0 * math.exp(ln)), sigma1=float(s10 * math.exp(ls)), stribeck=st), entries
 
     idx = _thinned(mask)
 
@@ -432,11 +447,13 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
         engine.set_base(p)
         return (meas - engine.predict(g, kk, entries))[idx]
 
-    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(1.0 / n0), -math.log(100)],
+    # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
+    b = math.log(1.5)
+    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(1.0 / n0), -math.log(100)], np.full(NS, -b),
                          [f[2] for t in terms for f in t.free]])
-    hi = np.concatenate([[math.log(5), math.log(20), math.log(40.0 / n0), math.log(100)],
+    hi = np.concatenate([[math.log(5), math.log(20), math.log(40.0 / n0), math.log(100)], np.full(NS, b),
                          [f[3] for t in terms for f in t.free]])
-    u0 = np.clip(np.concatenate([[0.0, 0.0, 0.0, 0.0], prior_u]), lo + 1e-9, hi - 1e-9)
+    u0 = np.clip(np.concatenate([[0.0, 0.0, 0.0, 0.0], np.zeros(NS), prior_u]), lo + 1e-9, hi - 1e-9)
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3,
                         max_nfev=40 if engine.c.space == "friction" else 15, **engine.loss())
     _, _, p, _ = unpack(sol.x)
@@ -445,6 +462,10 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
 
 
 # ---------------------------------------------------------------- screening a candidate's shape
+def engine_params_for_scale(cmp_: Comparison) -> FrictionParams:
+    return cmp_.params
+
+
 def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, lam_min: float, count: int = 3) -> list:
     """Wavelengths of the strongest peaks in the spectrum of the relative residual against
     position (sliding samples, binned on a uniform position grid)."""
@@ -454,8 +475,12 @@ def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, l
         y = resid[ok] / base[ok]
         x = cmp_.path[ok]
     else:
-        # position space: the window residual's slope per window tracks the friction error
-        y = np.gradient(np.gradient(resid)) * moving
+        # position space: I·ë of the window residual is the friction error (smoothed: the
+        # residual holds the encoder staircase), relative to the friction level
+        nwin = cmp_.windows[0][1] - cmp_.windows[0][0] if cmp_.windows else 42
+        wl = min(max(7, nwin // 6), 101) | 1
+        scale = np.abs(stribeck_curve(engine_params_for_scale(cmp_), cmp_.velocity)) + 1e-300
+        y = savgol_filter(resid, wl, 3, deriv=2) / scale
         x = cmp_.path
         ok = moving
         y = y[ok]
@@ -504,7 +529,7 @@ def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, b
         return [("tau", math.log(v)) for v in T * np.geomspace(0.03, 3.0, 7)]
     if name == "cyclic_softening":
         nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1]) or 1.0
-        return [("n_c", math.log(v)) for v in nrev * np.geomspace(0.02, 2.0, 5)]
+        return [("n_c", math.log(max(v, 3.0))) for v in nrev * np.geomspace(0.05, 2.0, 4)]
     if name == "position_ripple":
         lo = term.free[2][2]
         return [("wavelength", math.log(v)) for v in _ripple_wavelengths(cmp_, resid, base, lo)]
@@ -750,6 +775,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     cmp_ = comparison_of(rec, params)
     base_params = params.replace(effects=())
     cmp_.z_presliding = presliding_range(params)
+    cmp_.params = params
     engine = Engine(base_params, cmp_)
     meas = cmp_.measured
     n = len(meas)
@@ -771,7 +797,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     null = _fit(engine, prior_terms, np.concatenate([[0.0, 0.0], prior_u]), allm, fit_k0=True, k0=1.0)
     k0 = null.k0
     masks = fold_masks(n, s.folds, s.blocks_per_fold, cmp_.windows)
-    presliding = np.abs(cmp_.velocity) <= cmp_.v_rest
+    # presliding samples after the first significant reversal: before it the model runs on
+    # its virgin curve, a property of the hysteresis model itself, not of a softening contact
+    presliding = (np.abs(cmp_.velocity) <= cmp_.v_rest) & (cmp_.context().reversals >= 1)
     regimes_m = regime_masks(cmp_)
     steps = [{"label": "model as given", "name": None, "params": None, "rms": rms0},
              {"label": f"level ×{null.g:.3f}, stiffness ×{k0:.3f} refitted", "name": None, "params": None,

@@ -84,3 +84,35 @@ def test_diagnose_cli_bad_input_is_one_line(tmp_path, capsys):
     assert main(["diagnose", str(bad)]) == 2
     err = capsys.readouterr().err
     assert "position" in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+def test_load_rising_with_time_is_reported_as_confounded_with_drift():
+    # a tribometer (friction ∝ load by construction) whose load creeps up as a first-order
+    # approach over the whole session: a load effect and a drift in time explain the same
+    # residual; the diagnosis must say so, name neither, and say which experiment separates them
+    from synth.recordings import make_recording
+
+    def load(t):
+        return 2.0 + 2.5 * (1.0 - np.exp(-np.asarray(t) / 30.0))
+
+    df, truth = make_recording("tribometer", 4245, normal_load=load)
+    d = diagnose(to_recording(df, "creep.csv"), oracle_params(truth))
+    pairs = [set(c["effects"]) for c in d.confounded]
+    assert {"normal_load", "time_drift"} in pairs, d.text()
+    assert "normal_load" not in d.effects and "time_drift" not in d.effects, d.text()
+    c = d.confounded[pairs.index({"normal_load", "time_drift"})]
+    assert "load" in c["experiment"] and "temperature" in c["experiment"]
+
+
+def test_final_model_predicts_through_the_model_path():
+    # the extended parameter set, driven along the compared path by model.effects.predict,
+    # gives exactly the prediction the diagnosis scored
+    from leuven_friction.model.effects import Signals, predict
+
+    df, truth, case = make_case("tribometer", 4246, ("position_ripple",))
+    d = diagnose(to_recording(df, "ripple.csv"), oracle_params(truth))
+    assert d.effects, d.text()
+    path = d.explaining["position"][1]
+    load = d.explaining["load"][1] if "load" in d.explaining else None
+    got = predict(d.params_after, "displacement", Signals(time=d.time, position=path, load=load)).friction_force
+    assert np.allclose(got, d.model_after, rtol=1e-6, atol=1e-9 * np.max(np.abs(got)))
