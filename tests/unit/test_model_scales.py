@@ -128,3 +128,19 @@ def test_bad_scales_are_signal_errors(kuka):
         simulate_force(kuka, t, 0 * t, stiffness_scale=np.zeros(len(t)))
     with pytest.raises(SignalError, match="friction_scale: non-finite"):
         simulate_closed_loop(kuka, t, 0 * t, kp=1.0, friction_scale=np.full(len(t), np.nan))
+
+
+def test_stiffness_scale_changing_at_rest_moves_along_the_curve(kuka):
+    # presliding to x1, then at rest while κ ramps 1 -> 2: z stays, F_h = F_d(κ·z) (eq. (4) with
+    # F_b = 0 on the virgin curve), read off Table II's knots
+    t = np.arange(0.0, 20.0, 1e-2)
+    x1 = 3e-5
+    x = np.minimum(t / 10.0, 1.0) * x1
+    kap = np.where(t < 10.0, 1.0, 1.0 + (t - 10.0) / 10.0)
+    r = simulate_displacement(kuka, t, x, stiffness_scale=kap)
+    rest = t > 10.0
+    z = r.z[rest]
+    assert np.ptp(z) == 0.0  # the state does not move at rest
+    expected = np.interp(kap[rest] * z[0], kuka.transition_curve.z, kuka.transition_curve.F)
+    np.testing.assert_allclose(r.hysteresis_force[rest], expected, rtol=1e-12)
+    assert r.hysteresis_force[-1] > 1.2 * r.hysteresis_force[np.searchsorted(t, 9.99)]
