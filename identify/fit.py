@@ -204,7 +204,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         mb = motion_branches(pr)
         if mb:
             ds = PreslidingData(mb, Gaussian(pr.th.f_noise), name=f"{pr.source} (motion-driven)")
-            ds.x_noise = max(pr.th.x_noise, 1e-300)
+            ds.x_noise = getattr(pr.position_noise, "step", None) or max(pr.th.x_noise, 1e-300)
             datasets.append(ds)
         if not fb and not mb:
             notes.append(f"{pr.source}: no presliding branches (no applied-force ramps with reversals in presliding, "

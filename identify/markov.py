@@ -189,7 +189,9 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
     held = {}
     if k == 0:
         return SideDecision(None, {n: "no constant-velocity levels on this side" for n in NAMES}, "held")
-    if k >= 6:
+    # distinct speeds (levels repeated at one commanded speed count once): within 10 %
+    speeds = 1 + int(np.sum(np.diff(np.sort(np.log(a))) > np.log(1.1)))
+    if k >= 6 and speeds >= 4:
         fit = fit_side(levels, sign)
         below = int(np.sum(a < abs(fit.values["vs"])))
         bad = _trouble(fit, NAMES)
@@ -203,14 +205,17 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
         why = (f"only {below} level(s) below the Stribeck velocity" if below < 2
                else f"{', '.join(bad)} not determined by the levels (σ > half the value, a bound or a negative variance)")
     else:
-        why = f"only {k} level(s) on this side (the Stribeck curve needs at least 6)"
-    s2_ok = k >= 2 and np.ptp(a) > 0.2 * np.max(a)
+        why = (f"only {speeds} distinct speed(s) in {k} level(s) on this side; the Stribeck curve needs at least 6 "
+               f"levels at 4 or more speeds")
+    s2_ok = speeds >= 2 and np.ptp(a) > 0.2 * np.max(a)
     vs_hold = sign * float(np.min(a))
     if s2_ok:
         fit = _coulomb_viscous(levels, sign, viscous=True)
         held = {"Fs": f"{why}: held at Fc (no Stribeck effect)", "vs": f"{why}: held at the slowest level's speed",
                 "delta": f"{why}: held at {delta_hold:g}"}
         fit.values["vs"], fit.values["delta"] = vs_hold, delta_hold
+        if any("sigma2 came out negative" in m for m in fit.notes):
+            held["sigma2"] = "the levels give a negative viscous slope (not identifiable): held at 0"
         return SideDecision(fit, held, "Coulomb + viscous")
     fit = _coulomb_viscous(levels, sign, viscous=False)
     fit.values["vs"], fit.values["delta"] = vs_hold, delta_hold
@@ -237,10 +242,11 @@ def _coulomb_viscous(levels: Levels, sign: int, viscous: bool) -> SideFit:
     sd_fc = float(np.sqrt(cov[0, 0]))
     values = {"Fs": Fc, "Fc": Fc, "vs": sign * 1.0, "delta": 1.0, "sigma2": max(s2, 0.0)}
     stderr = {"Fs": 0.0, "Fc": sd_fc, "vs": 0.0, "delta": 0.0, "sigma2": float(np.sqrt(cov[1, 1])) if viscous else 0.0}
-    notes = []
     if viscous and s2 < 0:
-        notes.append("sigma2 came out negative; held at 0")
-    return SideFit(values, stderr, np.eye(5), chi2, int(len(v) - A.shape[1]), notes=notes)
+        fit = _coulomb_viscous(levels, sign, viscous=False)  # Fc refitted with σ2 = 0
+        fit.notes.append("sigma2 came out negative; held at 0")
+        return fit
+    return SideFit(values, stderr, np.eye(5), chi2, int(len(v) - A.shape[1]), notes=[])
 
 
 def fit_stribeck(levels: Levels, start=None) -> dict:

@@ -50,7 +50,14 @@ def detect_noise(x) -> object:
     scale = np.max(np.abs(x)) if len(x) else 1.0
     d = d[d > 1e-9 * scale]
     if len(d):
+        # the grid step: the smallest step, or the smallest difference between distinct small
+        # steps (a fast motion may never show a single step: 3, 4, 5 steps → step 1)
         q = float(np.quantile(d, 0.01)) if len(d) > 100 else float(np.min(d))
+        u = np.unique(np.round(d[d <= 20 * q] / (1e-6 * q)) * (1e-6 * q))
+        du = np.diff(u)
+        du = du[du > 0.05 * q]
+        if len(du) and np.min(du) < 0.9 * q:
+            q = float(np.min(du))
         # on a grid when the steps between readings are whole multiples of the smallest step
         # (tested on the steps, not the readings: a file's rounding of large readings must
         # not hide the grid); the step is then the mean single step
