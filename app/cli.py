@@ -85,7 +85,10 @@ def cmd_simulate(args) -> int:
 
     cols = parse_column_mapping(args.columns)
     need = ("time", "position") if args.drive == "displacement" else ("time", "force")
+    stages = _Stages()
     rec = load_recording(_recording(args.input), columns=cols, require=need)
+    stages.verbose = len(rec) >= _BIG_RECORDING
+    stages.done(f"read {len(rec)} rows from {args.input}")
     if params.effects:
         # a model extended by the diagnosis predicts with its effects, for either drive (the
         # one prediction path of model.effects; a force drive evaluates them along its motion)
@@ -98,9 +101,32 @@ def cmd_simulate(args) -> int:
         r = simulate_displacement(params, rec.time, rec.position)
     else:
         r = simulate_force(params, rec.time, rec.force)
+    stages.done("simulated")
     _write_table(_table([r], [params.model]), args.out)
+    stages.done(f"wrote {args.out}")
     print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}")
     return 0
+
+
+_BIG_RECORDING = 500_000  # rows from which a command says what each stage took
+
+
+class _Stages:
+    """A stderr line after each stage of a command on a big recording, with the time it took,
+    so that on an hour-long recording the user sees the work advance and where time goes."""
+
+    def __init__(self):
+        import time
+
+        self._clock = time.perf_counter
+        self._t = self._clock()
+        self.verbose = False
+
+    def done(self, what: str) -> None:
+        now = self._clock()
+        if self.verbose:
+            print(f"{what} ({now - self._t:.2f} s)", file=sys.stderr, flush=True)
+        self._t = now
 
 
 def _progress(frac, msg):
