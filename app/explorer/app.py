@@ -33,6 +33,7 @@ from .sets_tab import SetsTab
 
 CONTROLS_WIDTH = 370
 VIEW_WIDTH = 880  # fits 1280 px beside the controls; widened to the window on the first camera message
+CANVAS_MIN = 125  # px the dock layout leaves to the (empty) 3D canvas
 
 # The slider's own number box is a browser numeric input that garbles "1e-3": hidden, the
 # text box above each slider is the number entry. viser's own notifications (upload
@@ -110,17 +111,31 @@ class Explorer:
             self.link = None
 
     def _fill_window(self) -> None:
-        """Widen the plot panel over the (empty) 3D canvas once the browser reported its size."""
+        """Widen the plot panel over the (empty) 3D canvas once the browser's width is known.
+
+        The camera reports the canvas width: before the panels are docked that is the whole
+        window, afterwards the canvas beside them. Either gives the room there is; the dock
+        layout keeps the canvas ~120 px wide whatever the panels ask for, so the plots are
+        widened only by what is left beyond that, never at the controls' expense."""
         t0 = time.time()
-        while not self._stop.wait(0.2) and time.time() - t0 < 10:
+        last, since = None, time.time()
+        while not self._stop.wait(0.2) and time.time() - t0 < 15:
             try:
                 w = int(self.ctx.client.camera.image_width)
             except Exception:  # no camera message yet
                 continue
-            if w > 0:
-                if not self.ctx.session.model_view.get("three_d", False) and w > 40:
-                    self.panel.set_width(VIEW_WIDTH + w - 24)
-                return
+            if w != last:
+                last, since = w, time.time()
+                continue
+            if time.time() - since < 1.0:
+                continue
+            if w >= CONTROLS_WIDTH + VIEW_WIDTH:  # the whole window
+                target = w - CONTROLS_WIDTH - CANVAS_MIN - 40
+            else:  # the canvas beside the docked panels
+                target = VIEW_WIDTH + w - CANVAS_MIN - 20
+            if not self.ctx.session.model_view.get("three_d", False) and target > VIEW_WIDTH + 20:
+                self.panel.set_width(target)
+            return
 
     def _background(self) -> None:
         """The page's slow loop: table refresh, session saving, the optional 3D time-lapse of

@@ -137,8 +137,13 @@ class DataTab:
             event.client.send_file_download("recording_plot.csv", plots.figure_csv(self.gui_plot.figure).encode(),
                                             save_immediately=True)
 
+        ctx.listeners.append(self._on_change)
         if ctx.session.recording_bytes is not None:
             self.job.submit("load", False)
+
+    def _on_change(self, reason: str) -> None:
+        if self.ctx.proposal is None and "see the proposal" in self.gui_status.content:
+            self.gui_status.content = ""  # accepted or discarded: the Parameter sets tab has it
 
     # ------------------------------------------------------------------ jobs
     def _failed(self, kind: str, e: Exception) -> None:

@@ -44,6 +44,8 @@ class DiagnoseTab:
         ctx.listeners.append(self._on_change)
 
     def _on_change(self, reason: str) -> None:
+        if self.ctx.proposal is None and "see the proposal" in self.gui_status.content:
+            self.gui_status.content = ""
         if reason == "recording" and not self.job.busy():
             rec = self.ctx.recording
             self.gui_run.disabled = rec is None or rec.position is None
