@@ -204,3 +204,19 @@ def test_output_error_refinement_lowers_the_residual_and_keeps_the_truth(refined
         after, before = list(rf["per_experiment_after"].values())[0], list(rf["per_experiment_before"].values())[0]
         assert after < 4.0 * step / np.sqrt(12) and after < 0.25 * before
     _check_against_truth(res, truth)
+
+
+def test_thresholds_are_printed_and_overridable_from_the_cli(tmp_path, capsys):
+    from leuven_friction.app.cli import main
+
+    out = tmp_path / "p.yaml"
+    assert main(["fit", "sample_data/presliding_encoder.csv", "--out", str(out), "--no-refine",
+                 "--threshold", "f_turn=3.5"]) == 0
+    text = capsys.readouterr().out
+    assert "[[Thresholds" in text and "window" in text and "x_noise" in text
+    assert "f_turn set to 3.5 by the user" in text and "f_turn          = 3.5" in text
+    assert out.exists()
+    out2 = tmp_path / "q.yaml"
+    assert main(["fit", "sample_data/presliding_encoder.csv", "--out", str(out2), "--threshold", "nonsense=1"]) == 2
+    last = capsys.readouterr().err.strip().splitlines()[-1]  # loader notes come first
+    assert last.startswith("error:") and "unknown threshold" in last and not out2.exists()
