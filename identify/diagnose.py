@@ -414,7 +414,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
                      mask: np.ndarray) -> FrictionParams:
     """Part of the alternative: the level g, the presliding stiffness κ0, the exponent n of
     eq. (5) (how sharply presliding turns into sliding), the micro-viscous σ1 of eq. (3) and
-    S(v) (Fs, Fc, vs, σ2 per side, each within a factor 1.5), refitted together by output
+    the levels of S(v) (Fs, Fc per side, each within a factor 1.5), refitted together by output
     error: what an effect must beat is the best the base model can do on its own. Returns
     the parameters with n, σ1 and S(v) updated (g and κ0 are refitted again by the caller)."""
     if params.model != "leuven":
@@ -424,10 +424,12 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     meas = engine.c.measured
     n0, s10 = float(params.n), float(max(params.sigma1, 1e-12))
     sp, sn = params.stribeck.positive, params.stribeck.negative
-    NS = 8  # S(v) per side: Fs, Fc, vs, σ2 as factors (δ held: it shapes what the levels rarely show)
+    # S(v) levels per side, Fs and Fc as factors; vs, δ and σ2 held: a session whose speeds rise
+    # with time would let them take up a drift in time
+    NS = 4
 
     def side(s, f):
-        return StribeckSide(Fs=s.Fs * f[0], Fc=s.Fc * f[1], vs=s.vs * f[2], delta=s.delta, sigma2=s.sigma2 * f[3])
+        return StribeckSide(Fs=s.Fs * f[0], Fc=s.Fc * f[1], vs=s.vs, delta=s.delta, sigma2=s.sigma2)
 
     def unpack(u):
         g, kk, ln, ls = math.exp(u[0]), math.exp(u[1]), u[2], u[3]
@@ -437,7 +439,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
             m = len(term.free)
             entries.append(_entry(term, u[i:i + m]))
             i += m
-        st = Stribeck(side(sp, fac[:4]), side(sn, fac[4:]))
+        st = Stribeck(side(sp, fac[:2]), side(sn, fac[2:]))
         return g, kk, params.replace(n=float(n0 * math.exp(ln)), sigma1=float(s10 * math.exp(ls)), stribeck=st), entries
 
     idx = _thinned(mask)
@@ -832,15 +834,22 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             _, preds = cross_validate(engine, terms, fr.u, masks, k0)
             # a stiffness effect is judged where the presliding spring shows: at rest and in
             # presliding (elsewhere it could only stand in for a misfit of the break-away)
-            where = presliding if EFFECTS[name].acts_on == "stiffness" else allm
-            sse = np.array([engine.score((meas - preds[i])[m & where]) for i, m in enumerate(masks)])
-            nsse = np.array([engine.score((meas - null_preds[i])[m & where]) for i, m in enumerate(masks)])
+            sse = np.array([engine.score((meas - preds[i])[m]) for i, m in enumerate(masks)])
             # a fold where the candidate hardly changes the held-out prediction says nothing
-            informative = np.array([np.sum((preds[i] - null_preds[i])[m & where] ** 2) > INFORMATIVE * max(nsse[i], 1e-300)
+            informative = np.array([np.sum((preds[i] - null_preds[i])[m] ** 2) > INFORMATIVE * max(null_sse[i], 1e-300)
                                     for i, m in enumerate(masks)])
+            if EFFECTS[name].acts_on == "stiffness":
+                # and where the presliding spring shows (at rest, after the first reversal) it
+                # must help too: elsewhere it could only stand in for a misfit of break-away
+                sp = np.array([engine.score((meas - preds[i])[m & presliding]) for i, m in enumerate(masks)])
+                npre = np.array([engine.score((meas - null_preds[i])[m & presliding]) for i, m in enumerate(masks)])
+                inf_p = np.array([np.sum((preds[i] - null_preds[i])[m & presliding] ** 2) > INFORMATIVE * max(npre[i], 1e-300)
+                                  for i, m in enumerate(masks)])
+                if not (inf_p.sum() >= 2 and np.sum((sp < npre) & inf_p) > inf_p.sum() / 2):
+                    informative = np.zeros_like(informative)  # fails the presliding test: cannot pass
             n_eff = _effective_n(meas - fr.pred)
             dbic = n_eff * math.log(max(fr.rss, 1e-300) / max(rss_null, 1e-300)) + len(term.free) * math.log(n_eff)
-            evid.append(Evidence(name, fr.entries[-1]["params"], _rms(meas - fr.pred), sse, nsse, informative, dbic,
+            evid.append(Evidence(name, fr.entries[-1]["params"], _rms(meas - fr.pred), sse, null_sse, informative, dbic,
                                  fr.pred - cur.pred, fr))
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         base_rms = _rms(meas - cur.pred)
