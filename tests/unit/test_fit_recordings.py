@@ -220,3 +220,9 @@ def test_thresholds_are_printed_and_overridable_from_the_cli(tmp_path, capsys):
     assert main(["fit", "sample_data/presliding_encoder.csv", "--out", str(out2), "--threshold", "nonsense=1"]) == 2
     last = capsys.readouterr().err.strip().splitlines()[-1]  # loader notes come first
     assert last.startswith("error:") and "unknown threshold" in last and not out2.exists()
+
+
+def test_lowest_sample_rate_100Hz_fits():
+    res, truth = _fit("robot_joint", seed=2, rate=100.0)
+    _check_against_truth(res, truth)
+    assert res.transition_fit is not None
