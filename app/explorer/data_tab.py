@@ -77,16 +77,16 @@ class DataTab:
         with panel.add_tab("Data"):
             self.gui_info = gui.add_markdown("Upload a recording (left panel, **Data**): it is plotted at once, "
                                              "then fitted.")
+            self.gui_plot = gui.add_plotly(plots.recording_figure(name="", t=np.zeros(0), position=None, friction=None,
+                                                                  friction_label="friction", units={}),
+                                           aspect=0.7, config=plot_config("recording"), visible=False)
+            self.gui_csv = gui.add_button("Save plot data (CSV)", visible=False)
             self.gui_columns = gui.add_folder("Columns: which column is which signal", visible=False)
             with self.gui_columns:
                 self.gui_map = {s: gui.add_dropdown(s, (NONE,), initial_value=NONE, hint=SIGNAL_HELP[s]) for s in MAPPED}
                 self.gui_flip = gui.add_checkbox("flip friction sign", False,
                                                  hint="the file's friction/force has the opposite sign convention")
                 self.gui_remap = gui.add_button("Apply columns", hint="read the file again with this mapping")
-            self.gui_plot = gui.add_plotly(plots.recording_figure(name="", t=np.zeros(0), position=None, friction=None,
-                                                                  friction_label="friction", units={}),
-                                           aspect=0.7, config=plot_config("recording"), visible=False)
-            self.gui_csv = gui.add_button("Save plot data (CSV)", visible=False)
             self.gui_report = gui.add_markdown("")
 
         # ---------------------------------------------------------------- controls (left)
@@ -179,7 +179,7 @@ class DataTab:
             self.gui_status.content = f"⚠ {msg}"
             self.gui_info.content = (f"**{name}** could not be read: {msg}\n\nColumns in the file: "
                                      + ", ".join(f"`{c}`" for c in self.columns)
-                                     + "\n\nChoose the columns below and press *Apply columns*.")
+                                     + "\n\nChoose the columns under *Columns* below and press *Apply columns*.")
             self.gui_columns.visible = True
             self.gui_plot.visible = self.gui_csv.visible = False
             self.gui_fit.disabled = True
@@ -257,7 +257,7 @@ class DataTab:
             if sig in rec.columns:
                 rows.append(f"| {sig} | `{rec.columns[sig]}` | {rec.units.get(sig, '—')} | {SIGNAL_HELP.get(sig, '')} |")
             elif sig == "position" or (sig == "friction" and "force" not in rec.columns):
-                rows.append(f"| {sig} | **not found** | | choose its column below |")
+                rows.append(f"| {sig} | **not found** | | choose its column under *Columns*, below the plot |")
         notes = "; ".join(rec.notes)
         self.gui_info.content = (f"**{rec.source}** — {len(rec)} samples, {rec.time[-1] - rec.time[0]:.4g} s. "
                                  f"Recognised:\n\n" + "\n".join(rows) + f"\n\nSign: {sign_note}.  \n{notes}")

@@ -52,13 +52,16 @@ def params_table(p: FrictionParams) -> str:
 
 def compare_table(a: FrictionParams, b: FrictionParams, name_a: str, name_b: str, only_changed: bool = True) -> str:
     rows = [f"| parameter | {name_a} | {name_b} | unit |", "|---|---|---|---|"]
+    unit_a = {f.path: f.unit for f in fields_of(a)}
+    unit_b = {f.path: f.unit for f in fields_of(b)}
     for f in _fields_of(a, b):
         va, vb = get_value(a, f.path), get_value(b, f.path)
         if only_changed and va is not None and vb is not None and abs(va - vb) <= 1e-12 * max(abs(va), abs(vb), 1e-300):
             continue
         if va is None and vb is None:
             continue
-        rows.append(f"| {f.label} | {_cell(a, f.path)} | **{_cell(b, f.path)}** | {f.unit} |")
+        ua, ub = unit_a.get(f.path, f.unit), unit_b.get(f.path, f.unit)
+        rows.append(f"| {f.label} | {_cell(a, f.path)} | **{_cell(b, f.path)}** | {ub if ua == ub else f'{ua} → {ub}'} |")
     ea = ", ".join(e.get("name", "?") for e in a.effects) or "none"
     eb = ", ".join(e.get("name", "?") for e in b.effects) or "none"
     if ea != eb:
