@@ -69,7 +69,7 @@ def test_ml_recovers_transition_curve_within_uncertainty(rng):
 def test_ml_with_two_noise_models_beats_unweighted_least_squares():
     rng = np.random.default_rng(99)
     ml, ls = [], []
-    for _ in range(12):
+    for _ in range(8):
         # a short, precise proximity-sensor record and a long, coarse encoder record
         data = [_branches(rng, Gaussian(2e-7), nb=1, npts=120), _branches(rng, Quantized(1.6e-5, 4e-6), nb=4)]
         ml.append(fit_transition_curve(data, Z).F[1:])
