@@ -289,11 +289,13 @@ def overview_figure(*, units: dict, hyst: list, strib: list, slip: list, bottom:
 
     # --- presliding hysteresis, A–D marked
     has_loop = False
+    # an overlay gets its own axes only when there is a main loop whose scale it could hide
+    own_axes = any(r is not None for _, role, r in hyst if role != "overlay")
     for label, role, r in hyst:
         if r is None:
             continue
         x, F = _thin(r.position, r.friction_force, n=600)
-        ax = dict(xaxis="x5", yaxis="y5") if role == "overlay" else dict(xaxis="x", yaxis="y")
+        ax = dict(xaxis="x5", yaxis="y5") if role == "overlay" and own_axes else dict(xaxis="x", yaxis="y")
         data.append(dict(type="scatter", x=x * 1e6, y=F, mode="lines", name=label, line=MODEL_STYLE[role],
                          legendgroup=label, **ax))
         if role == "main":
@@ -303,7 +305,7 @@ def overview_figure(*, units: dict, hyst: list, strib: list, slip: list, bottom:
                              y=[r.friction_force[i] for i in m.values()], mode="markers+text", text=list(m),
                              textposition="top left", marker=dict(color="black", size=7), name="A–D", showlegend=False,
                              hoverinfo="x+y+text"))
-        if role == "overlay":
+        if role == "overlay" and own_axes:
             layout["xaxis5"] = dict(AXIS, overlaying="x", side="top", anchor="y", showgrid=False,
                                     title=dict(text=f"{label} displacement (µ{pu})", standoff=2),
                                     tickfont=dict(color=COLORS[4]), automargin=False)

@@ -246,7 +246,8 @@ class ModelTab:
                 band = (v, stribeck_curve(p, v), sd)
         notes = []
         if overlay not in ("none", p.model):
-            notes.append(f"{overlay}: same S(v) as {p.model}; its loop on the top/right axes")
+            notes.append(f"{overlay}: same S(v) as {p.model}" +
+                         ("; its loop on the top/right axes" if p.model != "static" and overlay != "static" else ""))
         if proposal is not None and dict(proposal.params.units) != dict(p.units):
             pu = proposal.params.units
             notes.append(f"proposal in {pu['position']}, {pu['force']}; current model in {p.units['position']}, "

@@ -69,8 +69,12 @@ def test_overview_static_note_and_overlay_on_its_own_axes():
                                 strib=[], slip=[], bottom={})
     texts = " ".join(a["text"] for a in fig.layout.annotations)
     assert "no presliding" in texts
-    over = [t for t in fig.data if t.name == "lugre"]
-    assert over and over[0].xaxis == "x5" and fig.layout.xaxis5.overlaying == "x"
+    # no main loop to protect: the overlay is drawn on the main axes
+    assert [t.xaxis for t in fig.data if t.name == "lugre"] == ["x"]
+    fig1 = plots.overview_figure(units=dict(p.units), hyst=[("leuven", "main", r), ("lugre", "overlay", lu)],
+                                 strib=[], slip=[], bottom={})
+    over = [t for t in fig1.data if t.name == "lugre"]
+    assert over and over[0].xaxis == "x5" and fig1.layout.xaxis5.overlaying == "x"  # its own scale
     fig2 = plots.overview_figure(units=dict(p.units), hyst=[("leuven", "main", r)], strib=[], slip=[], bottom={})
     marks = next(t for t in fig2.data if t.name == "A–D")
     # B is the top of the first ramp (20 N·m), C the bottom of the unloading (5 N·m), D the end (30 N·m)
