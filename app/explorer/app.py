@@ -58,6 +58,7 @@ class Explorer:
         if start_data is not None and not restored:
             session.recording_name, session.recording_bytes = start_data
         self.ctx = ctx = Context(client=client, session=session, store=store)
+        ctx.fit_on_start = start_data is not None and not restored  # `serve --data`: fit it at start
 
         # ---------------------------------------------------------------- layout
         gui.main_panel.dock_left()

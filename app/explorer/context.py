@@ -43,6 +43,7 @@ class Context:
     listeners: list = field(default_factory=list)  # called with (reason) when params/proposal/recording change
     status: Callable[[str], None] = lambda text: None
     dirty: bool = False  # the session changed since it was last saved
+    fit_on_start: bool = False
 
     @property
     def params(self) -> FrictionParams:

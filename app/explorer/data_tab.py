@@ -139,7 +139,7 @@ class DataTab:
 
         ctx.listeners.append(self._on_change)
         if ctx.session.recording_bytes is not None:
-            self.job.submit("load", False)
+            self.job.submit("load", ctx.fit_on_start)
 
     def _on_change(self, reason: str) -> None:
         if self.ctx.proposal is None and "see the proposal" in self.gui_status.content:
