@@ -178,9 +178,9 @@ def _positive_n(text: str) -> float:
     try:
         x = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+        raise UserError(f"--n: expected a number, got {text!r}") from None
     if not (x > 0 and x < float("inf")):
-        raise argparse.ArgumentTypeError(f"the exponent n of eq. (5) must be a finite number > 0, got {text!r}")
+        raise UserError(f"--n: the exponent n of eq. (5) must be a finite number > 0, got {text!r}")
     return x
 
 
@@ -190,6 +190,7 @@ def cmd_fit(args) -> int:
     from ..identify.paramfile import params_to_yaml
     from .outputs import Outputs
 
+    n = _positive_n(args.n)  # refused before any file is read
     outputs = Outputs({"--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
     base = _params(args.params, None)
@@ -208,7 +209,7 @@ def cmd_fit(args) -> int:
         if not sep:
             raise UserError(f"--threshold {item!r}: expected name=number")
     try:
-        res = fit_recordings(recs, base=base, n=args.n, fit_n=args.fit_n, progress=_progress, thresholds=overrides,
+        res = fit_recordings(recs, base=base, n=n, fit_n=args.fit_n, progress=_progress, thresholds=overrides,
                              friction_sign=args.friction_sign, refine=not args.no_refine)
     except FrictionError as e:
         print(file=sys.stderr)
@@ -328,7 +329,7 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--out", required=True, help="parameter YAML to write")
     f.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau")
     f.add_argument("--params", help="starting/default parameters for what the data cannot determine")
-    f.add_argument("--n", type=_positive_n, default=7.0, help="exponent n of eq. (5) (default 7, as the paper)")
+    f.add_argument("--n", default="7", help="exponent n of eq. (5) (default 7, as the paper)")
     f.add_argument("--fit-n", action="store_true", help="estimate n as well")
     f.add_argument("--threshold", action="append", metavar="NAME=VALUE",
                    help="override a segmentation threshold derived from the data (SI units; repeatable; the report "

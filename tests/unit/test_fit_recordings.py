@@ -155,10 +155,9 @@ def test_missing_force_column_is_one_line_naming_the_file(tmp_path):
 def test_fit_refuses_bad_n(n, capsys):
     from leuven_friction.app.cli import main
 
-    with pytest.raises(SystemExit) as e:
-        main(["fit", "sample_data/presliding_encoder.csv", "--out", "/tmp/never-written.yaml", "--n", n])
-    assert e.value.code == 2
-    assert "finite number > 0" in capsys.readouterr().err
+    assert main(["fit", "sample_data/presliding_encoder.csv", "--out", "/tmp/never-written.yaml", "--n", n]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[-1].startswith("error: --n:") and "finite number > 0" in err[-1]
     with pytest.raises(IdentificationError, match="n:"):
         fit_recordings([load_recording("sample_data/presliding_encoder.csv")], n=float(n))
 
