@@ -79,7 +79,11 @@ def check_listen_address(host: str, port: int, timeout: float = RESOLVE_TIMEOUT)
             continue
         # the port must be free on every address the server will bind (same options as the
         # server's own listening socket, so a port in TIME_WAIT does not count as taken)
-        with socket.socket(family, socktype, proto) as s:
+        try:
+            s = socket.socket(family, socktype, proto)
+        except OSError:  # a family this machine lacks (no IPv6): the server skips it too
+            continue
+        with s:
             s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
             if family == socket.AF_INET6:
                 s.setsockopt(socket.IPPROTO_IPV6, socket.IPV6_V6ONLY, 1)
