@@ -195,3 +195,19 @@ def test_port_zero_picks_a_free_port_and_prints_it(tmp_path):
     finally:
         proc.terminate()
         proc.wait(timeout=30)
+
+
+def test_fit_never_reports_plus_minus_zero(tmp_path, capsys):
+    # this sample's levels cannot determine several S(v) parameters: they must be held and
+    # named as held, never written as estimates with a zero (or huge) uncertainty
+    import re
+
+    sample = os.path.join(os.path.dirname(SAMPLE), "effect_position_periodic.csv")
+    rc, report, err = run(capsys, "fit", sample, "--out", tmp_path / "p.yaml")
+    assert rc == 0, err
+    assert not re.search(r"±\s*0(\.0*)?(\s|$)", report), report
+    assert "(held)" in report
+    p = yaml.safe_load((tmp_path / "p.yaml").read_text())
+    assert all(v > 0 for v in p.get("uncertainty", {}).values())
+    held = [ln.split(":")[0].strip() for ln in report.split("[[Held parameters")[1].splitlines()[1:] if ":" in ln]
+    assert held and not set(held) & set(p.get("uncertainty", {}))
