@@ -459,24 +459,26 @@ def recording_figure(*, name: str, t, position, friction, friction_label: str, u
     return go.Figure(dict(data=data, layout=layout), _validate=False)
 
 
-def figure_csv(fig) -> str:
-    """The data behind a figure, one row per point: trace, x, y (and ±σ where drawn)."""
+def figure_csv(fig, name: str | None = None) -> str:
+    """The data behind a figure, one row per point: trace, x, y (and ±σ where drawn); with
+    ``name``, a first column naming the figure (several figures in one file)."""
     import csv
     import io
 
     out = io.StringIO()
     w = csv.writer(out)
-    w.writerow(["trace", "x_axis", "x", "y", "sigma"])
+    w.writerow((["figure"] if name is not None else []) + ["trace", "x_axis", "x", "y", "sigma"])
+    lead = [name] if name is not None else []
     for tr in fig.data if hasattr(fig, "data") else fig["data"]:
         tr = tr if isinstance(tr, dict) else tr.to_plotly_json()
         x, y = tr.get("x"), tr.get("y")
         if x is None or y is None:
             continue
         err = (tr.get("error_y") or {}).get("array")
-        name = tr.get("name", "")
+        tr_name = tr.get("name", "")
         axis = tr.get("xaxis", "x")
         for i, (a, b) in enumerate(zip(np.asarray(x).tolist(), np.asarray(y).tolist())):
-            w.writerow([name, axis, a, b, "" if err is None else float(np.asarray(err)[i])])
+            w.writerow(lead + [tr_name, axis, a, b, "" if err is None else float(np.asarray(err)[i])])
     return out.getvalue()
 
 

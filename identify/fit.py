@@ -304,7 +304,7 @@ def fit_report(res: FitResult) -> str:
         if dec.fit is not None:
             lines.append(f"    Markov chi2 ({side})  : {dec.fit.chi2:.3g} for {dec.fit.dof} degrees of freedom ({dec.model})")
     lines.append("[[S(v), eq. (7) — Table I form]]")
-    lines.append(f"    {'parameter':10s} {'positive velocity':>24s} {'negative velocity':>24s}")
+    lines.append(f"    {'parameter':10s} {'positive velocity':>24s} {'negative velocity':>24s}   unit")
     unc = res.params.uncertainty
     for k in NAMES:
         cells = []

@@ -24,6 +24,7 @@ class DiagnoseTab:
                                              "result is a proposal you accept or discard.")
             self.gui_plots = [gui.add_plotly(plots.hysteresis_figure([]), aspect=0.55, config=plot_config(f"diagnosis_{i}"),
                                              visible=False) for i in range(4)]
+            self.gui_csv = gui.add_button("Save plot data (CSV)", visible=False, hint="the four figures, one file")
         with gui.add_folder("Diagnose", order=3.0):
             self.gui_run = gui.add_button("Diagnose", disabled=True,
                                           hint="find the effect the current model misses in the uploaded data")
@@ -40,6 +41,12 @@ class DiagnoseTab:
         @self.gui_cancel.on_click
         def _(_) -> None:
             self.job.cancel()
+
+        @self.gui_csv.on_click
+        def _(event) -> None:
+            parts = [plots.figure_csv(h.figure, name=f"diagnosis_{i + 1}") for i, h in enumerate(self.gui_plots)]
+            text = parts[0] + "".join(p.split("\n", 1)[1] for p in parts[1:])  # one header
+            event.client.send_file_download("diagnosis_plots.csv", text.encode(), save_immediately=True)
 
         ctx.listeners.append(self._on_change)
 
@@ -96,6 +103,7 @@ class DiagnoseTab:
             for handle, fig in zip(self.gui_plots, plots.diagnosis_figures(d)):
                 handle.figure = fig
                 handle.visible = True
+            self.gui_csv.visible = True
         if d.effect:
             text = (f"Effect **{d.effect}**: {d.description}.\n\nPer regime (RMS before → after): "
                     + "; ".join(f"{k} {r['rms_before']:.3g} → {r['rms_after']:.3g}" for k, r in d.regimes.items()))

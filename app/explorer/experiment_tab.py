@@ -20,10 +20,16 @@ class ExperimentTab:
             self.gui_rerun = gui.add_button("Run with the current model")
             self.gui_text = gui.add_markdown("Choose an experiment, or press *Run*: it reruns on request (some take seconds).")
             self.gui_plot = gui.add_plotly(plots.hysteresis_figure([]), aspect=0.6, config=plot_config("experiment"))
+            self.gui_csv = gui.add_button("Save plot data (CSV)")
         self.job = JobThread(f"experiment-{ctx.client.client_id}", {"run": self._run},
                              lambda kind, e: setattr(self.gui_text, "content", f"⚠ {type(e).__name__}: {e}"))
         self.gui_pick.on_update(lambda _: self.request())
         self.gui_rerun.on_click(lambda _: self.request())
+
+        @self.gui_csv.on_click
+        def _(event) -> None:
+            event.client.send_file_download(f"experiment_{self.gui_pick.value}.csv",
+                                            plots.figure_csv(self.gui_plot.figure).encode(), save_immediately=True)
 
     def request(self) -> None:
         self.job.submit("run", coalesce=True)

@@ -208,6 +208,13 @@ def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_fi
         body = page.locator("body").inner_text()
         found = re.search(r"Found \S+: see the proposal", body)
         assert found or "No significant missing effect" in body, body[-3000:]
+        # the diagnosis figures' data in one CSV, one header
+        page.get_by_role("tab", name="Diagnose").click()
+        with page.expect_download(timeout=30_000) as dl:
+            page.get_by_role("button", name="Save plot data (CSV)").locator("visible=true").first.click()
+        rows = Path(dl.value.path()).read_text().splitlines()
+        assert rows[0].startswith("figure,trace") and sum(r.startswith("figure,") for r in rows) == 1
+        assert {r.split(",")[0] for r in rows[1:]} >= {"diagnosis_1", "diagnosis_2"}
         if found:
             page.get_by_role("button", name="Discard").click()
             time.sleep(0.5)
