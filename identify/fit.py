@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
+from ..model.params import spec_of
 
 from .data import Recording
 from .errors import IdentificationError
@@ -312,7 +313,8 @@ def fit_report(res: FitResult) -> str:
             val = getattr(getattr(res.params.stribeck, side), k)
             path = f"stribeck.{side}.{k}"
             cells.append(f"{val:>12.4g} (held)   " if path in res.held else f"{val:>12.4g} ± {unc.get(path, float('nan')):<9.2g}")
-        lines.append(f"    {k:10s} {cells[0]} {cells[1]}")
+        # the unit from the parameter schema, in the units of the data (N·m or N, rad/s or m/s, …)
+        lines.append(f"    {k:10s} {cells[0]} {cells[1]}   {spec_of(res.params, f'stribeck.positive.{k}').unit}")
     corr_lines = []
     for side, dec in res.decisions.items():
         if dec.fit is None:
@@ -328,7 +330,8 @@ def fit_report(res: FitResult) -> str:
     tf = res.transition_fit
     if tf is not None:
         lines.append("[[Transition curve F_d — Table II form]]")
-        lines.append(f"    {'z':>12s} {'F_d(z)':>12s}")
+        zu, Fu = (spec_of(res.params, f"transition_curve.{c}.1").unit for c in "zF")
+        lines.append(f"    {'z (' + zu + ')':>12s} {'F_d(z) (' + Fu + ')':>12s}")
         for i, (z, F) in enumerate(zip(res.params.transition_curve.z, res.params.transition_curve.F)):
             err = f" ± {unc.get(f'transition_curve.F.{i}', float('nan')):.2g}" if i else "   (fixed)"
             lines.append(f"    {z:>12.4g} {F:>12.5g}{err}")
