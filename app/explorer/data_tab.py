@@ -332,6 +332,11 @@ def gap(rec: Recording, p) -> float | None:
         return None
 
 
+def _no_cli(text: str) -> str:
+    """A note without the command line's option hints ('; --fit-n estimates it'): a web user has none."""
+    return re.sub(r";?\s*(use |see )?--[a-z][\w-]*[^;)]*", "", str(text))
+
+
 def fit_summary(res) -> str:
     """What the fit estimated and what it held, and why (from the fit result)."""
     held = dict(getattr(res, "held", None) or {})
@@ -344,10 +349,10 @@ def fit_summary(res) -> str:
         lines.append("**Estimated**: " + ", ".join(
             [w for w, ok in (("S(v)", res.stribeck_fit), ("transition curve", res.transition_fit)) if ok] or ["nothing"]))
     if held:
-        lines.append(f"**Held** ({len(held)}) at the current values:\n" + "\n".join(f"- {k}: {r}" for k, r in held.items()))
+        lines.append(f"**Held** ({len(held)}) at the current values:\n" + "\n".join(f"- {k}: {_no_cli(r)}" for k, r in held.items()))
     elif not res.stribeck_fit or not res.transition_fit:
         lines.append("**Held**: " + ", ".join(w for w, ok in (("S(v)", res.stribeck_fit),
                                                               ("transition curve", res.transition_fit)) if not ok))
     if res.notes:
-        lines.append("Notes:\n" + "\n".join(f"- {n}" for n in res.notes))
+        lines.append("Notes:\n" + "\n".join(f"- {_no_cli(n)}" for n in res.notes))
     return "\n\n".join(lines)

@@ -81,3 +81,13 @@ def test_overview_static_note_and_overlay_on_its_own_axes():
     assert np.allclose(marks.y[1:], [20.0, 5.0, 30.0], atol=0.5)
     csv_text = plots.figure_csv(fig2)
     assert csv_text.splitlines()[0] == "trace,x_axis,x,y,sigma" and "A–D" in csv_text
+
+
+def test_web_messages_name_the_file_and_no_command_line_options():
+    from leuven_friction.app.explorer.data_tab import _no_cli, web_message
+    from leuven_friction.identify.errors import DataError
+
+    msg = web_message(DataError("no column for position (columns: a, b; name them with --columns position=<column>)"),
+                      "run7.tsv")
+    assert msg.startswith("run7.tsv: ") and "--" not in msg and "Columns in the Data tab" in msg
+    assert _no_cli("fixed at 7 (the paper's choice; --fit-n estimates it)") == "fixed at 7 (the paper's choice)"
