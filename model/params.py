@@ -138,6 +138,9 @@ class Units(_RecordMapping):
         unknown = sorted(str(k) for k in value if k not in cls._names())
         if unknown:
             raise ParameterError(f"units.{unknown[0]}: unknown (known: {', '.join(cls._names())})")
+        missing = [n for n in cls._names() if n not in value]
+        if value and missing:  # half a unit record would pair the file's position unit with our force unit
+            raise ParameterError(f"units.{missing[0]}: missing (give position, force and time)")
         return cls(**{str(k): v for k, v in value.items()})
 
     @classmethod

@@ -99,6 +99,7 @@ def test_yaml_dict_writes_the_units_of_the_data(kuka):
     (lambda d: d.update(units={"position": "m", "force": "N", "time": "s"}) or d.pop("sigma1"),
      r"^sigma1: missing; its default .* is in the paper's units"),
     (lambda d: d.update(units={"angle": "rad"}), r"^units\.angle: unknown"),
+    (lambda d: d.update(units={"position": "m"}), r"^units\.force: missing"),
     (lambda d: d.update({1: 2}), r"^1: unknown field"),
 ])
 def test_parameter_dict_errors_name_the_field(kuka, mutate, match):
