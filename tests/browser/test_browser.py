@@ -90,12 +90,12 @@ def test_scientific_notation_in_a_number_box(chromium, server):
     box.fill("0,005")
     box.press("Enter")
     wait_plot(page, OVERVIEW, after2)
-    assert table_value(page, "Fs⁺") == 250.0 and table_value(page, "vs⁺") == 0.005
+    assert table_value(page, "Fs⁺", 250.0) == 250.0 and table_value(page, "vs⁺", 0.005) == 0.005
     # physically odd but valid: |Fc| > |Fs| is applied and warned about
     text_box(page, "Fc⁺ (N·m)").fill("300")
     text_box(page, "Fc⁺ (N·m)").press("Enter")
     wait_text(page, "friction would rise with speed", 15)
-    assert table_value(page, "Fc⁺") == 300.0
+    assert table_value(page, "Fc⁺", 300.0) == 300.0
     shot(page, "number_entry")
     page.close()
 
@@ -139,12 +139,18 @@ def tribometer_file(tmp_path_factory):
     return path, truth
 
 
-def table_value(page, label: str) -> float:
-    """A value of the current-model table (Parameter sets tab)."""
+def table_value(page, label: str, expect: float | None = None, timeout: float = 5.0) -> float:
+    """A value of the current-model table (Parameter sets tab). The table follows the model
+    within a fraction of a second: with ``expect``, wait up to ``timeout`` for that value."""
     page.get_by_role("tab", name="Parameter sets").click()
     table = page.locator("xpath=//*[contains(text(), 'Current model')]/following::table[1]")
     row = table.locator("tr", has=page.locator("td", has_text=re.compile(f"^{re.escape(label)}$")))
-    return float(row.first.locator("td").nth(1).inner_text().split("±")[0])
+    t0 = time.time()
+    while True:
+        v = float(row.first.locator("td").nth(1).inner_text().split("±")[0])
+        if expect is None or v == pytest.approx(expect, rel=1e-4) or time.time() - t0 > timeout:
+            return v
+        time.sleep(0.1)
 
 
 def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_file):
@@ -181,7 +187,7 @@ def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_fi
         assert table_value(page, "Fs⁺") == pytest.approx(36.0)
         page.get_by_role("button", name="Accept").click()
         time.sleep(1.0)
-        fc = table_value(page, "Fc⁺")
+        fc = table_value(page, "Fc⁺", proposed_fc)
         assert fc == pytest.approx(proposed_fc, rel=1e-4)  # the accepted set is the proposal
         # in the generator's range of sliding friction (Fc..Fs), in N: units and sign came through
         true = truth.stribeck["positive"]
@@ -218,13 +224,13 @@ def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_fi
         if found:
             page.get_by_role("button", name="Discard").click()
             time.sleep(0.5)
-        assert table_value(page, "Fc⁺") == pytest.approx(fc, rel=1e-4)  # discarded: the accepted fit stays
+        assert table_value(page, "Fc⁺", fc) == pytest.approx(fc, rel=1e-4)  # discarded: the accepted fit stays
         shot(page, "after_diagnose_1280")
 
         # reload: the session comes back (accepted fit, recording, history)
         page.reload()
         page.wait_for_selector("text=Session restored", timeout=60_000)
-        assert table_value(page, "Fc⁺") == pytest.approx(fc, rel=1e-4)
+        assert table_value(page, "Fc⁺", fc) == pytest.approx(fc, rel=1e-4)
         page.get_by_role("tab", name="Data").click()
         wait_plot(page, RECORDING, None, timeout=60)
         assert "pin_on_disc_run7.tsv" in page.locator("body").inner_text()
@@ -245,7 +251,7 @@ def test_load_yaml_in_the_page(chromium, server, tmp_path):
     wait_text(page, "Loaded", 30)
     wait_plot(page, OVERVIEW, before)
     assert text_box(page, FS).input_value() == "50"
-    assert table_value(page, "Fc⁺") == pytest.approx(41.5)
+    assert table_value(page, "Fc⁺", 41.5) == pytest.approx(41.5)
     # the history holds the start and the loaded file: compare, then restore the start
     page.get_by_role("tab", name="Parameter sets").click()
     start_title = page.locator("xpath=//label[text()='set']/following::input[1]").input_value()
@@ -256,7 +262,7 @@ def test_load_yaml_in_the_page(chromium, server, tmp_path):
     assert "50" in compare and "36" in compare  # Fs⁺ now vs at the start
     page.get_by_role("button", name="Restore this set").click()
     time.sleep(1.0)
-    assert table_value(page, "Fs⁺") == pytest.approx(36.0)
+    assert table_value(page, "Fs⁺", 36.0) == pytest.approx(36.0)
     f2 = tmp_path / "stage_axis_again.yaml"  # (the same file twice is not a new upload for the browser)
     f2.write_text(f.read_text())
     upload_for(page, "Load parameter YAML").set_input_files(str(f2))
@@ -266,7 +272,7 @@ def test_load_yaml_in_the_page(chromium, server, tmp_path):
     bad.write_text("stribeck: [1, 2\n")
     upload_for(page, "Load parameter YAML").set_input_files(str(bad))
     wait_text(page, "broken.yaml", 30)
-    assert table_value(page, "Fc⁺") == pytest.approx(41.5)
+    assert table_value(page, "Fc⁺", 41.5) == pytest.approx(41.5)
     page.close()
 
 
