@@ -11,6 +11,7 @@ YAML's provenance say which.
 
 from __future__ import annotations
 
+import dataclasses
 import datetime as _dt
 import math
 from dataclasses import dataclass, field
@@ -26,7 +27,7 @@ from .markov import NAMES, Levels, SideDecision, fit_side_honest
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import Prepared, Thresholds, constant_velocity_levels, force_branches, motion_branches, noise_sd, prepare
 
-KNOT_FRACTIONS = (0.04, 0.15, 0.4, 1.0)  # of the displacement range covered by the branches
+KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
 
 
 @dataclass
@@ -72,7 +73,7 @@ def _thin(branches):
     for b in keep:
         if len(b.force) > MAX_POINTS:
             idx = np.unique(np.linspace(0, len(b.force) - 1, MAX_POINTS).astype(int))
-            b = type(b)(force=b.force[idx], displacement=b.displacement[idx], D=b.D, driven=b.driven, t_end=b.t_end)
+            b = dataclasses.replace(b, force=b.force[idx], displacement=b.displacement[idx])
         out.append(b)
     return out
 
@@ -87,22 +88,34 @@ def check_n(n) -> float:
     return x
 
 
-def knots_from_data(datasets) -> np.ndarray:
-    """Abscissas at fixed fractions of the displacement range the branches cover (so every
-    segment holds data), dropping any closer to its neighbour than two position-noise σ
-    (knots the data cannot tell apart). Refuses if fewer than one knot remains."""
-    # up to where the force change is 70 % of D: beyond, eq. (9)'s factor 1/(1 - (F/D)^n)
-    # rather than F_d shapes the displacement, and a knot there is not determined
-    def reach_of(b):
-        m = b.force <= 0.7 * b.D
+def knots_from_data(datasets, n: float = 7.0) -> np.ndarray:
+    """Abscissas where the branch that reaches furthest in z has gone KNOT_FRACTIONS of its
+    force change (so every segment holds data, densest where F_d is steepest), dropping any
+    closer to its neighbour than two position-noise σ (knots the data cannot tell apart).
+    Refuses if fewer than one knot remains."""
+    # z, not the displacement: eq. (5) at presliding speeds gives dz = (1 - (ΔF/D)^n)·dx, so
+    # near D the displacement runs ahead of z; a top knot at the largest displacement would
+    # lie beyond every datum's z and F_d there would be an extrapolation. Only branches that
+    # start at a reversal in the record tell z (one continued on the outer loop starts at an
+    # unknown z).
+    def z_of(b):
         x = b.displacement - (b.displacement[0] if b.driven == "force" else 0.0)
-        return float(np.max(x[m])) if m.any() else 0.0
+        w = 1.0 - np.clip(b.force / b.D, 0.0, 1.0) ** n
+        return np.maximum.accumulate(np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(x))]))
 
-    reach = max(reach_of(b) for d in datasets for b in d.branches)
+    observed = [b for d in datasets for b in d.branches if b.observed and len(b.force) > 1]
+    if not observed:
+        raise IdentificationError("no presliding branch starts at a reversal in the record: the abscissas of the "
+                                  "transition curve cannot be placed (give them with knots=...)")
+    zs = [z_of(b) for b in observed]
+    k = int(np.argmax([zb[-1] for zb in zs]))
+    zb, fb = zs[k], np.maximum.accumulate(observed[k].force)
+    reach = float(zb[-1])
     resolution = min(d.x_noise for d in datasets)
     z = [0.0]
     for f in KNOT_FRACTIONS:
-        zi = f * reach
+        # where the force change first reaches the fraction (the top knot: the end of the data)
+        zi = reach if f >= 1.0 else float(zb[int(np.searchsorted(fb, f * fb[-1]))])
         if zi - z[-1] >= 2.0 * resolution:
             z.append(zi)
     if len(z) < 2:
@@ -195,7 +208,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     datasets = []
     slow = np.min(np.abs(levels.velocity)) if len(levels.velocity) else np.inf
     for pr in preps:
-        v_max = max(pr.th.v_floor, 0.3 * slow) if np.isfinite(slow) else 4.0 * pr.th.v_floor
+        # presliding ends where gross sliding begins: below the slowest level; without levels
+        # only the 97 % of D cut (F_s from the starting file) bounds the branches
+        v_max = max(pr.th.v_floor, 0.3 * slow) if np.isfinite(slow) else np.inf
         fb = force_branches(pr, p.stribeck.positive.Fs, p.stribeck.negative.Fs, v_max)
         if fb:
             ds = PreslidingData(fb, pr.position_noise, name=f"{pr.source} (force-driven)")
@@ -217,9 +232,17 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     n_br = sum(len(d.branches) for d in datasets)
     tfit = None
     if n_br:
-        z = knots_from_data(datasets) if knots is None else check_knots(knots, datasets)
+        z = knots_from_data(datasets, n) if knots is None else check_knots(knots, datasets)
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
         tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+        flat = [i for i in range(1, len(tfit.F)) if not tfit.F[i] > tfit.F[i - 1] * (1 + 1e-9)]
+        if flat and knots is None and len(z) - len(flat) >= 2:
+            # a segment the likelihood makes flat (its increment underflows): the data do not
+            # resolve that knot; drop it and refit
+            notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in flat)} not resolved "
+                         f"by the data (flat segment): dropped")
+            z = np.delete(z, flat)
+            tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
         bad = [i for i in range(1, len(tfit.F)) if not (tfit.stderr[i] < 0.5 * (tfit.F[i] - tfit.F[i - 1]) + 0.5 * tfit.F[i])]
         if bad:
             notes.append(f"transition curve: F_d at knot(s) {bad} has σ comparable to its value: weakly determined")

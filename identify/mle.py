@@ -83,6 +83,7 @@ class Branch:
     D: float
     driven: str = "force"
     t_end: float = float("nan")  # time of the branch's last sample in its recording
+    observed: bool = True  # the reversal that starts the branch is in the record (else: on the outer loop)
 
 
 def branch_prediction(br: Branch, z_knots, F_knots, n, offset):

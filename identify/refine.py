@@ -285,16 +285,32 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                           "the Markov and maximum-likelihood estimates (residual RMS "
                           + "; ".join(f"{k}: {v:.3g}" for k, v in before.items()) + ")", "rms_before": before}
         return res
+    if vec.has_tc and not np.all(np.diff(np.cumsum(np.exp(fit.x[len(vec.s_paths):len(vec.s_paths) + vec.nk]))) > 0):
+        # an increment of F_d underflowed to nothing: a flat segment the data do not support
+        res.refinement = {"done": False, "reason": "the refined transition curve has a flat segment (an increment "
+                          "went to zero): kept the Markov and maximum-likelihood estimates", "rms_before": before}
+        return res
     after = rms(fit.x)
     J = fit.jac
     dof = max(len(fit.fun) - len(fit.x), 1)
     chi2_red = float(2 * fit.cost / dof)
+    # a parameter the simulated stretch never reaches (a knot of F_d beyond the force the
+    # opening presliding stretch exercises) has a zero column: it keeps its previous
+    # estimate (its gradient is zero, so it did not move) and its previous uncertainty
+    norms = np.sqrt(np.sum(np.asarray(J) ** 2, axis=0))
+    seen = norms > 1e-12 * (np.max(norms) if len(norms) else 0.0)
+    cov = np.zeros((len(fit.x), len(fit.x)))
     try:
-        cov = np.linalg.inv(J.T @ J) * max(1.0, chi2_red)
+        cov[np.ix_(seen, seen)] = np.linalg.inv(J[:, seen].T @ J[:, seen]) * max(1.0, chi2_red)
     except np.linalg.LinAlgError:
         res.refinement = {"done": False, "reason": "the refined information matrix is singular: kept the previous estimates"}
         return res
     sd = np.sqrt(np.abs(np.diag(cov)))
+    prev_unc = dict(res.params.uncertainty)
+    paths_all = vec.paths()
+    for i in np.flatnonzero(~seen):
+        if i < len(vec.s_paths) and paths_all[i] in prev_unc:
+            sd[i] = prev_unc[paths_all[i]]
     p = vec.unpack(fit.x)
     unc = dict(res.params.uncertainty)
     paths = vec.paths()
@@ -309,8 +325,12 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
         inc = np.exp(fit.x[ns:ns + vec.nk])
         Jf = np.tril(np.ones((vec.nk, vec.nk))) * inc[None, :]
         covF = Jf @ cov[ns:ns + vec.nk, ns:ns + vec.nk] @ Jf.T
+        unseen = np.cumsum(~seen[ns:ns + vec.nk]) > 0
         for i in range(vec.nk):
-            unc[f"transition_curve.F.{i + 1}"] = float(np.sqrt(abs(covF[i, i])))
+            path = f"transition_curve.F.{i + 1}"
+            # beyond an unreached knot the previous (maximum-likelihood) uncertainty adds in
+            extra = prev_unc.get(path, 0.0) if unseen[i] else 0.0
+            unc[path] = float(np.sqrt(abs(covF[i, i]) + extra ** 2))
     res.params = p.replace(uncertainty=unc)
     b_all = float(np.sqrt(np.mean(r0 ** 2)))
     a_all = float(np.sqrt(np.mean(fit.fun ** 2)))

