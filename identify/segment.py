@@ -91,7 +91,7 @@ class Thresholds:
     f_turn: float = 0.0  # force excursion that confirms a turning point
     x_turn: float = 0.0  # displacement that confirms a motion reversal
     load_tol: float = 0.0  # normal load within this of its plateau counts as constant
-    min_travel: float = 0.0  # a constant-velocity run travels at least this (presliding excursions do not)
+    min_travel: float = 0.0  # a level must travel at least this (0: none; only set by the user)
     velocity_source: str = ""
     notes: list = field(default_factory=list)
 
@@ -262,22 +262,6 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
             flipped = True
     return Prepared(rec, velocity, friction, rec.force if rec.friction is None else None, noise, usable, chunks, th,
                     flipped, notes)
-
-
-def _travel_threshold(x, h) -> float:
-    """Split the displacements between motion reversals into presliding excursions and
-    sliding strokes at the widest gap of their (log) distribution; 0 when there is no
-    clear gap (a ratio below 5)."""
-    tp = _turning_points(np.ascontiguousarray(x, dtype=float), h)
-    e = np.sort(np.abs(np.diff(x[tp])))
-    e = e[e > 0]
-    if len(e) < 2:
-        return 0.0
-    le = np.log(e)
-    i = int(np.argmax(np.diff(le)))
-    if le[i + 1] - le[i] < np.log(20.0):
-        return 0.0
-    return float(np.sqrt(e[i] * e[i + 1]))
 
 
 def _batch_var_of_mean(a, batches=8):
