@@ -35,7 +35,9 @@ def _diagnose_case(kind, seed, effects, base="oracle"):
     gap = [s["rms"] for s in d.steps]
     return {"kind": kind, "seed": seed, "hidden": list(effects), "expected": sorted(case.expected), "named": named,
             "confounded": [c["effects"] for c in d.confounded], "rms_steps": gap, "noise": d.noise,
-            "space": d.space, "samples": len(df), "seconds": el}
+            "space": d.space, "samples": len(df), "seconds": el,
+            "heldout_gains": [s.get("heldout_gain") for s in d.steps[2:]],
+            "best_rejected": max((c["heldout_gain"] for c in d.candidates if not c["significant"]), default=None)}
 
 
 def confusion(rows) -> dict:
