@@ -162,10 +162,35 @@ class _Vector:
                 + (["sigma1"] if self.sigma1_start is not None else []))
 
 
-def _simulate(p, e: Experiment) -> np.ndarray:
+def _simulate_full(p, e: Experiment):
     if e.kind == "motion":
-        return simulate_displacement(p, e.t, e.drive).friction_force
-    return simulate_force(p, e.t, e.drive, x0=e.x0).position
+        return simulate_displacement(p, e.t, e.drive)
+    return simulate_force(p, e.t, e.drive, x0=e.x0)
+
+
+def _simulate(p, e: Experiment) -> np.ndarray:
+    r = _simulate_full(p, e)
+    return r.friction_force if e.kind == "motion" else r.position
+
+
+def _unreached_segments(vec, theta, exps, z_knots) -> np.ndarray:
+    """Mask over θ: the log-increments of F_d whose segment the simulated stretches (at θ)
+    do not reach past its middle in z."""
+    out = np.zeros(len(theta), dtype=bool)
+    if not (vec.has_tc and vec.nk):
+        return out
+    p = vec.unpack(theta)
+    z_reach = 0.0
+    for e in exps:
+        try:
+            z_reach = max(z_reach, float(np.nanmax(np.abs(_simulate_full(p, e).z))))
+        except (SignalError, ValueError, FloatingPointError):
+            return out
+    zk = np.asarray(z_knots, dtype=float)
+    ns = len(vec.s_paths)
+    for j in range(vec.nk):
+        out[ns + j] = z_reach < 0.5 * (zk[j] + zk[j + 1])
+    return out
 
 
 def _level_residuals(p, levels):
@@ -273,9 +298,19 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     # L1 beyond 3 noise σ) keeps those few from bending S(v). Position outputs are smooth:
     # plain least squares.
     loss = "soft_l1" if any(e.kind == "motion" for e in exps) else "linear"
+    held_tc = np.zeros(len(theta0), dtype=bool)
     try:
         fit = least_squares(resid, theta0, bounds=(lo, hi), x_scale="jac", method="trf", max_nfev=max_nfev, loss=loss, f_scale=3.0,
                             diff_step=1e-5)
+        # a segment of F_d the refined simulation does not reach past its middle keeps its
+        # maximum-likelihood value: touched only at its start, it would absorb whatever the
+        # end of a simulated stretch leaves unexplained. Refit once with those held.
+        held_tc = _unreached_segments(vec, fit.x, exps, res.params.transition_curve.z)
+        if held_tc.any():
+            pad = 1e-9 * np.maximum(np.abs(theta0), 1.0)
+            lo2, hi2 = np.where(held_tc, theta0 - pad, lo), np.where(held_tc, theta0 + pad, hi)
+            fit = least_squares(resid, np.clip(fit.x * ~held_tc + theta0 * held_tc, lo2, hi2), bounds=(lo2, hi2),
+                                x_scale="jac", method="trf", max_nfev=max_nfev, loss=loss, f_scale=3.0, diff_step=1e-5)
     except (ValueError, np.linalg.LinAlgError) as e:
         res.refinement = {"done": False, "reason": f"the simulation-based least squares failed ({e})"}
         return res
@@ -298,7 +333,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     # opening presliding stretch exercises) has a zero column: it keeps its previous
     # estimate (its gradient is zero, so it did not move) and its previous uncertainty
     norms = np.sqrt(np.sum(np.asarray(J) ** 2, axis=0))
-    seen = norms > 1e-12 * (np.max(norms) if len(norms) else 0.0)
+    seen = (norms > 1e-12 * (np.max(norms) if len(norms) else 0.0)) & ~held_tc
     cov = np.zeros((len(fit.x), len(fit.x)))
     try:
         cov[np.ix_(seen, seen)] = np.linalg.inv(J[:, seen].T @ J[:, seen]) * max(1.0, chi2_red)
