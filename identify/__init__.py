@@ -6,7 +6,7 @@ The names below are imported on first use (PEP 562), so that importing one submo
 
 from __future__ import annotations
 
-import importlib
+from ..model.lazy import lazy_exports
 
 _WHERE = {"load_params": "paramfile", "params_to_yaml": "paramfile", "save_params": "paramfile",
           "write_atomic": "paramfile"}
@@ -14,14 +14,4 @@ _WHERE = {"load_params": "paramfile", "params_to_yaml": "paramfile", "save_param
 __all__ = sorted(_WHERE)
 
 
-def __getattr__(name: str):
-    mod = _WHERE.get(name)
-    if mod is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f".{mod}", __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _WHERE)

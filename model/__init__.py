@@ -9,7 +9,7 @@ import ...`` or ``.layout`` must not pay for numba, so that the command line sta
 
 from __future__ import annotations
 
-import importlib
+from .lazy import lazy_exports
 
 _WHERE = {
     "FrictionError": "errors", "ParameterError": "errors", "SignalError": "errors",
@@ -23,14 +23,4 @@ _WHERE = {
 __all__ = sorted(_WHERE)
 
 
-def __getattr__(name: str):
-    mod = _WHERE.get(name)
-    if mod is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f".{mod}", __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _WHERE)
