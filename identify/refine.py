@@ -130,7 +130,11 @@ class _Vector:
         p = p.replace(stribeck=Stribeck(positive=StribeckSide(**sides["positive"]), negative=StribeckSide(**sides["negative"])))
         if self.has_tc:
             ns = len(self.s_paths)
-            F = np.concatenate([[0.0], np.cumsum(np.exp(theta[ns:ns + self.nk]))])
+            # a trial step of least_squares may overflow exp(): F_d is then infinite and the
+            # residual of that step is penalised like any failed simulation (parts()), so the
+            # overflow is no news for the user
+            with np.errstate(over="ignore"):
+                F = np.concatenate([[0.0], np.cumsum(np.exp(theta[ns:ns + self.nk]))])
             p = p.replace(transition_curve=TransitionCurve(kind="piecewise_linear", z=p.transition_curve.z,
                                                            F=tuple(map(float, F))))
         if self.sigma1_start is not None:
