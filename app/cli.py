@@ -194,11 +194,6 @@ def cmd_fit(args) -> int:
     outputs = Outputs({"--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
     base = _params(args.params, None)
-    recs = [load_recording(_recording(path), columns=cols) for path in args.data]
-    for r in recs:
-        for note in r.notes:
-            print(f"{r.source}: {note}", file=sys.stderr)
-
     overrides = {}
     for item in args.threshold or []:
         name, sep, value = item.partition("=")
@@ -208,6 +203,14 @@ def cmd_fit(args) -> int:
             raise UserError(f"--threshold {item!r}: expected name=number") from None
         if not sep:
             raise UserError(f"--threshold {item!r}: expected name=number")
+    from ..identify.segment import Thresholds
+
+    Thresholds.checked(overrides)  # a bad setting is refused before any file is read
+    recs = [load_recording(_recording(path), columns=cols) for path in args.data]
+    for r in recs:
+        for note in r.notes:
+            print(f"{r.source}: {note}", file=sys.stderr)
+
     try:
         res = fit_recordings(recs, base=base, n=n, fit_n=args.fit_n, progress=_progress, thresholds=overrides,
                              friction_sign=args.friction_sign, refine=not args.no_refine)
@@ -333,7 +336,7 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--fit-n", action="store_true", help="estimate n as well")
     f.add_argument("--threshold", action="append", metavar="NAME=VALUE",
                    help="override a segmentation threshold derived from the data (SI units; repeatable; the report "
-                        "lists the names: v_floor, rel_tol, min_run, window, f_turn, x_turn, min_travel, load_tol, ...)")
+                        "prints them all; settable: window, v_floor, rel_tol, min_run, f_turn, x_turn, load_tol, min_travel)")
     f.add_argument("--friction-sign", choices=["auto", "action", "reaction"], default="auto",
                    help="sign convention of a measured friction column: auto detects a reaction force (positive while "
                         "the position decreases) and flips it (default auto)")

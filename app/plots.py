@@ -155,64 +155,6 @@ def transition_fit_figure(fit, datasets, units: dict | None = None) -> go.Figure
                    f"force change ({u['force']})")
 
 
-# ---------------------------------------------------------------- the discrepancy workflow
-EXPLAINED_BY = {"position_periodic": "position", "position_smooth": "position", "time_drift": "time",
-                "normal_load": "load", "viscous_shape": "velocity", "cyclic_softening": "reversals",
-                "sign_asymmetry": "velocity", "presliding_stiffness": "velocity", "frictional_lag": "time"}
-
-
-def diagnosis_time_figure(d, units: dict | None = None) -> go.Figure:
-    """Measured friction and the model before and after adding the effect, against time."""
-    u = units or d.params_before.units
-    fig = _Fig()
-    t, m, b, a = _thin(d.time, d.measured, d.model_before, d.model_after, n=4000)
-    fig.add_trace(_scatter(t, m, mode="markers", name="measured", marker=dict(size=2, color="#7f7f7f")))
-    fig.add_trace(_scatter(t, b, mode="lines", name="model before", line=dict(color=COLORS[1], width=1)))
-    if d.effect:
-        fig.add_trace(_scatter(t, a, mode="lines", name=f"with {d.effect}", line=dict(color=COLORS[0], width=1)))
-    return _layout(fig, "Measured and simulated friction", "time (s)", f"friction ({u['force']})")
-
-
-def regime_figure(d) -> go.Figure:
-    """RMS gap per regime, before and after."""
-    names = list(d.regimes)
-    fig = _Fig()
-    fig.add_trace(dict(type="bar", x=names, y=[d.regimes[k]["rms_before"] for k in names], name="before",
-                       marker=dict(color=COLORS[1])))
-    fig.add_trace(dict(type="bar", x=names, y=[d.regimes[k]["rms_after"] for k in names], name="after",
-                       marker=dict(color=COLORS[0])))
-    return _layout(fig, "RMS gap per regime", "", f"RMS ({d.params_before.units['force']})", barmode="group",
-                   xaxis=dict(tickangle=-40))
-
-
-def residual_figure(d, variable: str | None = None) -> go.Figure:
-    """Residual against the variable that explains the named effect (or time)."""
-    var = variable or EXPLAINED_BY.get(d.effect or "", "time")
-    if var not in d.explaining:
-        var = "time"
-    label, values = d.explaining[var]
-    fig = _Fig()
-    x, rb, ra = _thin(values, d.measured - d.model_before, d.measured - d.model_after, n=4000)
-    fig.add_trace(_scatter(x, rb, mode="markers", name="before", marker=dict(size=2, color=COLORS[1])))
-    if d.effect:
-        fig.add_trace(_scatter(x, ra, mode="markers", name="after", marker=dict(size=2, color=COLORS[0])))
-    return _layout(fig, f"Residual against {label}", label, f"measured − model ({d.params_before.units['force']})")
-
-
-def candidates_figure(d) -> go.Figure:
-    """How much of the RMS gap each candidate removes (significant ones in colour)."""
-    names = [c["name"] for c in d.candidates]
-    fig = _Fig()
-    fig.add_trace(dict(type="bar", x=[100 * c["reduction"] for c in d.candidates], y=names, orientation="h",
-                       marker=dict(color=[COLORS[2] if c["significant"] else "#bbbbbb" for c in d.candidates]),
-                       name="RMS reduction"))
-    return _layout(fig, "Candidate effects: RMS gap removed", "% of the RMS gap", "", yaxis=dict(autorange="reversed"))
-
-
-def diagnosis_figures(d) -> list:
-    return [diagnosis_time_figure(d), residual_figure(d), regime_figure(d), candidates_figure(d)]
-
-
 # ---------------------------------------------------------------- the explorer's overview
 OVERVIEW_TITLE = "Model overview"
 MODEL_STYLE = {"main": dict(color=COLORS[0], width=2), "proposal": dict(color=COLORS[2], width=2, dash="dash"),

@@ -106,7 +106,6 @@ def run_suite(quick: bool = False, out: str | None = None, progress=print, base:
 
 
 def bench_diagnosis(quick: bool = False, progress=print) -> dict:
-    import numpy as np
 
     from leuven_friction.identify.diagnose import diagnose
     from leuven_friction.model import simulate_displacement

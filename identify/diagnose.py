@@ -38,7 +38,7 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.signal import savgol_filter
 
-from ..model import FrictionParams, TransitionCurve, simulate_displacement, simulate_force
+from ..model import FrictionParams, TransitionCurve, simulate_displacement
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, significant_reversals
 from .data import DataError, Recording
@@ -231,7 +231,6 @@ def ripple_min_wavelength(cmp_: Comparison) -> float:
 def _terms_for(name: str, cmp_: Comparison) -> Term:
     t = cmp_.time
     T = float(t[-1] - t[0])
-    dt = float(np.median(np.diff(t)))
     if name == "time_drift":
         # τ ≥ T/30: a faster "drift" is a step between the first experiments and the rest of
         # the session, which a schedule ordered in time makes out of any misfit
@@ -683,7 +682,8 @@ class Diagnosis:
 
     @property
     def effect_params(self) -> dict | None:
-        return self.steps[1]["params"] if self.effects else None
+        # steps: [model as given, base refit, + first effect, + second effect, …]
+        return self.steps[2]["params"] if self.effects else None
 
     def summary(self) -> dict:
         return {

@@ -23,9 +23,9 @@ from ..model.params import spec_of
 
 from .data import Recording
 from .errors import IdentificationError
-from .markov import NAMES, Levels, SideDecision, fit_side_honest
+from .markov import NAMES, Levels, fit_side_honest
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .segment import Prepared, Thresholds, constant_velocity_levels, force_branches, motion_branches, noise_sd, prepare
+from .segment import Prepared, constant_velocity_levels, force_branches, motion_branches, noise_sd, prepare
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
 

@@ -142,8 +142,10 @@ def read_mat_file(path: Path, usecols: Callable[[str], bool] | None = None):
         data = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)
     except NotImplementedError:
         raise DataError(f"{path}: a MATLAB v7.3 (HDF5) file; save it with -v7 or export a CSV") from None
-    except (ValueError, TypeError, OSError) as e:
-        raise DataError(f"{path}: not a readable MATLAB .mat file ({str(e).splitlines()[0]})") from None
+    except (ValueError, TypeError, OSError, scipy.io.matlab.MatReadError) as e:
+        # scipy's reader says why in its own words (truncated, not a .mat at all, …)
+        reason = (str(e).splitlines() or [type(e).__name__])[0]
+        raise DataError(f"{path}: not a readable MATLAB .mat file ({reason})") from None
     columns: dict[str, np.ndarray] = {}
 
     def add(name: str, value) -> None:

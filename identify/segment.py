@@ -95,13 +95,40 @@ class Thresholds:
     velocity_source: str = ""
     notes: list = field(default_factory=list)
 
-    def override(self, values: dict) -> "Thresholds":
-        names = {f.name for f in fields(self)} - {"notes", "velocity_source"}
+    # the thresholds a user may set: each is applied before anything uses it. The others
+    # (rate, gap, noise floors) are measurements of the recording, not settings.
+    SETTABLE = ("window", "v_floor", "rel_tol", "min_run", "f_turn", "x_turn", "load_tol", "min_travel")
+
+    @classmethod
+    def checked(cls, values: dict | None) -> dict:
+        """The user's overrides as numbers, each refused in one line unless it is a settable
+        threshold with a finite value in its range (window: an odd count ≥ 5; min_run: a
+        count ≥ 2; min_travel ≥ 0; the others > 0)."""
+        out = {}
         for k, v in (values or {}).items():
-            if k not in names:
-                raise DataError(f"--threshold {k}: unknown threshold (known: {', '.join(sorted(names))})")
-            cur = getattr(self, k)
-            setattr(self, k, int(v) if isinstance(cur, int) and not isinstance(cur, bool) else float(v))
+            if k not in cls.SETTABLE:
+                what = "is measured from the recording, not a setting" if k in {f.name for f in fields(cls)} \
+                    else "is not a threshold"
+                raise DataError(f"--threshold {k}: {what} (settable: {', '.join(cls.SETTABLE)})")
+            v = float(v)
+            if not np.isfinite(v):
+                raise DataError(f"--threshold {k}={v}: must be finite")
+            if k == "window":
+                if v != int(v) or v < 5 or int(v) % 2 == 0:
+                    raise DataError(f"--threshold window={v:g}: must be an odd whole number of samples, at least 5")
+                v = int(v)
+            elif k == "min_run":
+                if v != int(v) or v < 2:
+                    raise DataError(f"--threshold min_run={v:g}: must be a whole number of samples, at least 2")
+                v = int(v)
+            elif v < 0 or (v == 0 and k != "min_travel"):
+                raise DataError(f"--threshold {k}={v:g}: must be {'>= 0' if k == 'min_travel' else '> 0'}")
+            out[k] = v
+        return out
+
+    def override(self, values: dict) -> "Thresholds":
+        for k, v in values.items():
+            setattr(self, k, v)
             self.notes.append(f"{k} set to {v:g} by the user")
         return self
 
@@ -214,6 +241,8 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
     if v_low > 0:
         while w < max(5, n // 400) and _slope_noise(th.x_noise, w, dt) > 0.02 * v_low:
             w += 2
+    overrides = Thresholds.checked(overrides)
+    w = overrides.get("window", w)  # a window set by the user is the one the velocity uses
     th.window = int(w)
     v_pos = np.zeros(n)
     for a, b in chunks:
@@ -239,7 +268,7 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
         N = rec.normal_load
         N0 = float(np.quantile(N, 0.95))
         th.load_tol = max(5.0 * white_noise_sd(N), 0.02 * abs(N0))
-    th.override(overrides or {})
+    th.override(overrides)
     if rec.normal_load is not None:
         usable = np.abs(rec.normal_load - N0) <= th.load_tol
         notes.append(f"normal load: plateau {N0:.4g} N; {int((~usable).sum())} samples off the plateau "

@@ -16,7 +16,7 @@ import numpy as np
 import viser
 
 from ...identify.data import SIGNALS, Recording, load_recording, velocity_of
-from ...identify.errors import DataError, IdentificationError
+from ...identify.errors import DataError
 from ...model.errors import FrictionError
 from .. import plots
 from .context import Context, Proposal, plot_config

@@ -8,10 +8,13 @@ from __future__ import annotations
 
 import viser
 
+from ...model.effects import EFFECTS
 from ...model.errors import FrictionError
 from .. import plots
 from .context import Context, Proposal, plot_config
 from .jobs import Cancelled, JobThread
+
+MAX_FIGURES = 6  # steps, signal, up to three named effects, cross-validation
 
 
 class DiagnoseTab:
@@ -22,9 +25,11 @@ class DiagnoseTab:
             self.gui_text = gui.add_markdown("Upload a recording, then press **Diagnose** (left): the workflow looks "
                                              "for the physical effect the model misses, adds it and refits. The "
                                              "result is a proposal you accept or discard.")
+            # the figures of the HTML report (plots.diagnosis_report_figures): the gap step by step,
+            # the compared signal, one residual per named effect, the cross-validation evidence
             self.gui_plots = [gui.add_plotly(plots.hysteresis_figure([]), aspect=0.55, config=plot_config(f"diagnosis_{i}"),
-                                             visible=False) for i in range(4)]
-            self.gui_csv = gui.add_button("Save plot data (CSV)", visible=False, hint="the four figures, one file")
+                                             visible=False) for i in range(MAX_FIGURES)]
+            self.gui_csv = gui.add_button("Save plot data (CSV)", visible=False, hint="the figures shown, one file")
         with gui.add_folder("Diagnose", order=3.0):
             self.gui_run = gui.add_button("Diagnose", disabled=True,
                                           hint="find the effect the current model misses in the uploaded data")
@@ -44,7 +49,8 @@ class DiagnoseTab:
 
         @self.gui_csv.on_click
         def _(event) -> None:
-            parts = [plots.figure_csv(h.figure, name=f"diagnosis_{i + 1}") for i, h in enumerate(self.gui_plots)]
+            parts = [plots.figure_csv(h.figure, name=f"diagnosis_{i + 1}") for i, h in enumerate(self.gui_plots)
+                     if h.visible]
             text = parts[0] + "".join(p.split("\n", 1)[1] for p in parts[1:])  # one header
             event.client.send_file_download("diagnosis_plots.csv", text.encode(), save_immediately=True)
 
@@ -100,15 +106,22 @@ class DiagnoseTab:
         self._busy(False)
         with ctx.client.atomic():
             self.gui_text.content = f"**Diagnosis of {name}**\n\n```\n{d.text()}\n```"
-            for handle, fig in zip(self.gui_plots, plots.diagnosis_figures(d)):
-                handle.figure = fig
-                handle.visible = True
+            figures = plots.diagnosis_report_figures(d)[:MAX_FIGURES]
+            for i, handle in enumerate(self.gui_plots):
+                if i < len(figures):
+                    handle.figure = figures[i]
+                handle.visible = i < len(figures)
             self.gui_csv.visible = True
-        if d.effect:
-            text = (f"Effect **{d.effect}**: {d.description}.\n\nPer regime (RMS before → after): "
+        if d.effects:
+            named = ", ".join(d.effects)
+            text = ("Effects, in the order named: "
+                    + "; ".join(f"**{name}** ({EFFECTS[name].description})" for name in d.effects)
+                    + ".\n\nGap after each step: "
+                    + " → ".join(f"{s['rms']:.3g}" for s in d.steps)
+                    + "\n\nPer regime (RMS before → after): "
                     + "; ".join(f"{k} {r['rms_before']:.3g} → {r['rms_after']:.3g}" for k, r in d.regimes.items()))
-            self.propose(Proposal(f"diagnosis: {d.effect}", d.params_after.replace(model=before.model), text,
+            self.propose(Proposal(f"diagnosis: {named}", d.params_after.replace(model=before.model), text,
                                   d.rms_before, d.rms_after))
-            self.gui_status.content = f"Found **{d.effect}**: see the proposal."
+            self.gui_status.content = f"Found **{named}**: see the proposal."
         else:
             self.gui_status.content = "No significant missing effect: the model explains the data (nothing proposed)."

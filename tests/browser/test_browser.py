@@ -161,7 +161,6 @@ def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_fi
         page.get_by_role("tab", name="Data").click()
         # plotted before any fit, with what was (not) recognised
         wait_plot(page, RECORDING, None)
-        info = page.locator("text=Recognised").first.locator("xpath=ancestor::div[1]").inner_text()
         assert "Friction [uN]" in page.content() and "not found" in page.content()
         friction = next(t for t in plot_traces(page, RECORDING) if t["name"] == "friction")
         # µN converted to N: the generator's Coulomb level is of order 1 N, never 1e6

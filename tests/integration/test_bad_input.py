@@ -211,3 +211,27 @@ def test_fit_never_reports_plus_minus_zero(tmp_path, capsys):
     assert all(v > 0 for v in p.get("uncertainty", {}).values())
     held = [ln.split(":")[0].strip() for ln in report.split("[[Held parameters")[1].splitlines()[1:] if ":" in ln]
     assert held and not set(held) & set(p.get("uncertainty", {}))
+
+
+@pytest.mark.parametrize("setting, says", [
+    ("window=nan", "must be finite"),
+    ("min_run=inf", "must be finite"),
+    ("window=4", "odd whole number"),
+    ("v_floor=-1", "must be > 0"),
+    ("rate=10", "measured from the recording"),
+    ("speed=3", "not a threshold"),
+])
+def test_bad_threshold_settings_are_one_line_and_write_nothing(tmp_path, capsys, setting, says):
+    out = tmp_path / "p.yaml"
+    rc, _, err = run(capsys, "fit", SAMPLE, "--threshold", setting, "--out", out)
+    assert rc == 2 and says in one_line(err) and setting.split("=")[0] in err
+    assert not out.exists()
+
+
+def test_a_threshold_set_by_the_user_is_the_one_used(tmp_path, capsys):
+    # the velocity window: a longer Savitzky–Golay window than the derived one must show in the
+    # report, and the fit must still find the sample's 22 levels (11 speeds per side)
+    out = tmp_path / "p.yaml"
+    rc, text, _ = run(capsys, "fit", SAMPLE, "--threshold", "window=41", "--no-refine", "--out", out)
+    assert rc == 0
+    assert "window          = 41" in text and "window set to 41 by the user" in text

@@ -15,6 +15,7 @@ import pytest
 
 from leuven_friction.app.cli import main
 from leuven_friction.identify.diagnose import diagnose
+from leuven_friction.model.effects import EFFECTS
 from synth.hidden import make_case, oracle_params, to_recording
 
 
@@ -46,6 +47,8 @@ def test_diagnose_cli_writes_json_html_yaml_that_simulate_reproduces(tmp_path):
                  str(out_json), "--html", str(out_html), "--out", str(out_yaml)]) == 0
     res = json.loads(out_json.read_text())
     assert "time_drift" in res["effects"]
+    # the JSON carries the first named effect's fitted parameters, under that effect's names
+    assert set(res["effect_params"]) == set(EFFECTS[res["effects"][0]].param_names), res["effect_params"]
     assert res["steps"][-1]["rms"] <= 0.7 * res["steps"][1]["rms"]
     html = out_html.read_text()
     assert "Plotly.newPlot" in html and "<script src=\"http" not in html  # plotly.js embedded

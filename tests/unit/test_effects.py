@@ -2,7 +2,6 @@
 simulation, and the count of significant reversals — each against an expectation written
 out here, not taken from the code under test."""
 
-import math
 
 import numpy as np
 import pytest

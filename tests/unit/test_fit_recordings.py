@@ -2,7 +2,6 @@
 friction, its own integrator, other units, sensors and sign conventions): parameters against
 the generator's truth, held parameters named, scale and time-scale invariance, loader cases."""
 
-import io
 
 import numpy as np
 import pytest
@@ -225,8 +224,9 @@ def test_thresholds_are_printed_and_overridable_from_the_cli(tmp_path, capsys):
     assert out.exists()
     out2 = tmp_path / "q.yaml"
     assert main(["fit", "sample_data/presliding_encoder.csv", "--out", str(out2), "--threshold", "nonsense=1"]) == 2
-    last = capsys.readouterr().err.strip().splitlines()[-1]  # loader notes come first
-    assert last.startswith("error:") and "unknown threshold" in last and not out2.exists()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err  # refused before any file is read: no loader notes
+    assert err[0].startswith("error:") and "is not a threshold" in err[0] and not out2.exists()
 
 
 def test_lowest_sample_rate_100Hz_fits():

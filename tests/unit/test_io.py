@@ -94,6 +94,10 @@ def test_unreadable_files_are_data_errors(tmp_path):
     (tmp_path / "bad.mat").write_bytes(b"not a mat file at all" * 10)
     with pytest.raises(DataError, match="bad.mat: not a readable MATLAB"):
         load_recording(tmp_path / "bad.mat")
+    for name, content in (("empty.mat", b""), ("short.mat", b"hello\n")):  # scipy: "truncated"
+        (tmp_path / name).write_bytes(content)
+        with pytest.raises(DataError, match=f"{name}: not a readable MATLAB"):
+            load_recording(tmp_path / name)
     (tmp_path / "empty.csv").write_bytes(b"")
     with pytest.raises(DataError, match="empty.csv: the file is empty"):
         load_recording(tmp_path / "empty.csv")
