@@ -19,7 +19,7 @@ SPEEDS = np.array([0.001, 0.002, 0.004, 0.008, 0.015, 0.03, 0.06, 0.12, 0.25, 0.
 
 def constant_velocity(params=None, seed: int = 1, torque_noise: float = 0.5, speeds=SPEEDS, rate: float = 500.0):
     """Constant-velocity tests, positive then negative: each level long enough to settle
-    (≥ 6e-3 rad or 1 s), torque with Gaussian noise ``torque_noise`` N·m, 1 kHz."""
+    (≥ 6e-3 rad or 1 s), torque with Gaussian noise ``torque_noise`` N·m, sampled at ``rate`` (500 Hz)."""
     p = params or default_params()
     rng = np.random.default_rng(seed)
     vel = np.concatenate([speeds, -speeds])

@@ -22,7 +22,7 @@ def rng():
 
 
 # The suite's kinds are its folders: unit/ and integration/ run by default (`pytest -q`),
-# slow/ (Monte Carlo, hidden-effect suites) and browser/ (real chromium) are marked here and
+# slow/ (Monte Carlo, diagnosis of unseen recordings, the wheel check) and browser/ (real chromium) are marked here and
 # selected with `pytest -m slow` / `pytest -m browser` (see `.ci/run`).
 _KIND_OF_FOLDER = {"slow": pytest.mark.slow, "browser": pytest.mark.browser}
 
