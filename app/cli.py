@@ -69,6 +69,10 @@ def cmd_simulate(args) -> int:
     from .outputs import check_output_path
 
     check_output_path(args.out, "--out")  # before the work
+    from ..identify.io import table_format
+
+    if table_format(args.out) == "mat":  # .mat is read, not written
+        raise UserError(f"--out {args.out}: MATLAB files are read, not written; use .csv or .parquet")
     params = _params(args.params, args.model)
     if args.experiment:
         if args.experiment not in EXPERIMENTS:

@@ -235,3 +235,10 @@ def test_a_threshold_set_by_the_user_is_the_one_used(tmp_path, capsys):
     rc, text, _ = run(capsys, "fit", SAMPLE, "--threshold", "window=41", "--no-refine", "--out", out)
     assert rc == 0
     assert "window          = 41" in text and "window set to 41 by the user" in text
+
+
+def test_simulate_refuses_a_mat_output_before_the_work(tmp_path, capsys):
+    out = tmp_path / "o.mat"
+    rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--out", out)
+    assert rc == 2 and "o.mat: MATLAB files are read, not written" in one_line(err)
+    assert list(tmp_path.iterdir()) == []  # nothing staged, nothing written
