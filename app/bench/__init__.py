@@ -17,7 +17,9 @@ generators), run when they can be imported and skipped with a note in an install
 from __future__ import annotations
 
 import importlib
+import sys
 import time
+from pathlib import Path
 
 SECTIONS = ("simulator", "startup", "io", "scale")
 CHECKOUT_SECTIONS = {"identification": ("bench.identification", "bench_identification"),
@@ -30,22 +32,38 @@ def _section(name: str):
     return getattr(mod, f"bench_{name}")
 
 
+def checkout_root() -> Path | None:
+    """The source checkout this package runs from (an editable install: ``app/bench/`` sits two
+    folders below the repository root), or None for an installed wheel."""
+    root = Path(__file__).resolve().parents[2]
+    return root if (root / "pyproject.toml").is_file() and (root / "bench" / "__init__.py").is_file() else None
+
+
+def _checkout_suite(module: str, fn: str):
+    """The checkout's benchmark function, or a note saying why it is skipped. Only the checkout's
+    own ``bench/`` counts: a distribution that happens to be called ``bench`` is not ours."""
+    root = checkout_root()
+    if root is None:
+        return None, f"{module} is a tool of the source checkout, not of an installed copy; skipped"
+    if str(root) not in sys.path:
+        sys.path.insert(0, str(root))
+    mod = importlib.import_module(module)
+    if not Path(mod.__file__).resolve().is_relative_to(root):
+        return None, f"{module} resolves to {mod.__file__}, not the checkout's; skipped"
+    return getattr(mod, fn), None
+
+
 def run_all(quick: bool = False, progress=print, sections=ALL_SECTIONS) -> dict:
     results: dict = {}
     for name in sections:
         t0 = time.perf_counter()
         if name in CHECKOUT_SECTIONS:
-            module, fn = CHECKOUT_SECTIONS[name]
-            try:
-                run = getattr(importlib.import_module(module), fn)
-            except ModuleNotFoundError as e:
-                if e.name not in ("bench", module):  # a broken import inside the suite is a bug
-                    raise
-                note = f"{name}: {module} is not importable here; skipped (it is a tool of the source checkout)"
-                progress(note)
-                results.setdefault("notes", []).append(note)
+            run, note = _checkout_suite(*CHECKOUT_SECTIONS[name])
+            if run is None:
+                progress(f"{name}: {note}")
+                results.setdefault("notes", []).append(f"{name}: {note}")
                 continue
-            progress(f"== {name} ({module})")
+            progress(f"== {name} ({CHECKOUT_SECTIONS[name][0]})")
             results.update(run(quick, progress))
         else:
             progress(f"== {name}")
