@@ -34,7 +34,7 @@ def _diagnose_case(kind, seed, effects, base="oracle"):
     named = list(d.effects)
     gap = [s["rms"] for s in d.steps]
     return {"kind": kind, "seed": seed, "hidden": list(effects), "expected": sorted(case.expected), "named": named,
-            "confounded": [c["effects"] for c in d.confounded], "rms_steps": gap, "noise": d.noise,
+            "confounded": [c["effects"] for c in d.confounded], "rms_steps": gap, "rms_free_steps": [s.get("rms_free") for s in d.steps], "noise": d.noise,
             "space": d.space, "samples": len(df), "seconds": el,
             "heldout_gains": [s.get("heldout_gain") for s in d.steps[2:]],
             "best_rejected": max((c["heldout_gain"] for c in d.candidates if not c["significant"]), default=None)}
@@ -66,10 +66,14 @@ def scores(rows) -> dict:
     false_ctrl = sum(bool(r["named"]) for r in controls)
     both = sum(set(r["expected"]) <= set(r["named"]) for r in pairs)
     shrink = [1 - r["rms_steps"][-1] / r["rms_steps"][1] for r in rows if r["named"]]
+    # the same, in the space the decision is made (beside the alternative's free steady curve)
+    shrink_free = [1 - r["rms_free_steps"][-1] / r["rms_free_steps"][1] for r in rows
+                   if r["named"] and r.get("rms_free_steps")]
     return {"single": len(single), "right_named": right, "exactly_right": exact, "controls": len(controls),
             "controls_with_false_effect": false_ctrl, "pairs": len(pairs), "pairs_both_named": both,
             "named_cases": len(shrink), "shrink_min": min(shrink) if shrink else None,
-            "shrink_below_30pct": sum(s < 0.3 for s in shrink)}
+            "shrink_below_30pct": sum(s < 0.3 for s in shrink),
+            "shrink_free_below_30pct": sum(s < 0.3 for s in shrink_free)}
 
 
 def format_matrix(conf) -> str:

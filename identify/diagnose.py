@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import least_squares
+from scipy.ndimage import uniform_filter1d
 from scipy.signal import savgol_filter
 
 from ..model import FrictionParams, TransitionCurve, simulate_displacement
@@ -55,6 +56,8 @@ class Settings:
     confound_corr: float = 0.7  # corrections this alike explain the same residual
     clear_margin: float = 0.25  # the better of two alike candidates must gain this much more (relative)
     max_effects: int = 3
+    free_steady: bool = True  # the alternative holds a free correction to S(v) (FreeSteadyCurve)
+    space: str = "friction"  # "position": a force-driven recording compared by output error in position
     candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
 
 
@@ -80,6 +83,11 @@ class Comparison:
     flipped: bool = False
     z_presliding: float = 0.0  # the model's presliding range (position units)
     params: FrictionParams | None = None  # the model the comparison was set up for
+    average: int = 1  # friction from an applied force: predictions averaged over this many samples too
+
+    def filtered(self, friction: np.ndarray) -> np.ndarray:
+        """A predicted friction seen as the measurement sees it (the same moving average)."""
+        return friction if self.average <= 1 else uniform_filter1d(friction, self.average, mode="nearest")
 
     @property
     def unit(self) -> str:
@@ -146,7 +154,10 @@ def play(x: np.ndarray, h: float) -> np.ndarray:
     return out
 
 
-def comparison_of(rec: Recording, params: FrictionParams) -> Comparison:
+def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction") -> Comparison:
+    """Where to compare: in friction when the recording has a friction column or an applied
+    force (friction from eq. (8), averaged), in position (``space="position"``) only for an
+    applied force."""
     if rec.position is None:
         raise DataError(f"{rec.source}: diagnosis needs a position column")
     t = np.asarray(rec.time, dtype=np.float64)
@@ -182,9 +193,46 @@ def comparison_of(rec: Recording, params: FrictionParams) -> Comparison:
     if rec.velocity is not None:
         vt = np.asarray(rec.velocity, dtype=np.float64)
         # use the tachometer where it is quieter than the differentiated position
-        if _mad_sd(np.diff(vt)) / math.sqrt(2) < v_noise:
-            vel = vt
-            notes.append("initial velocities from the velocity column (quieter than the smoothed position)")
+        vt_noise = _mad_sd(np.diff(vt)) / math.sqrt(2)
+        if vt_noise < v_noise:
+            vel, v_noise = vt, vt_noise
+            notes.append("velocity from the velocity column (quieter than the smoothed position)")
+    if space == "position":
+        return _position_comparison(rec, params, t, x, f, vel, sdx, w, min_exc, v_rest, v_noise, path, notes)
+    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
+    L = averaging_length(params.inertia, f_sd, v_noise, dt, w, len(t))
+    meas = friction_from_force(f, vel, params.inertia, dt, L)
+    noise = math.sqrt(f_sd**2 / L + 2.0 * (params.inertia * v_noise / (L * dt)) ** 2)
+    notes.append(f"compared in friction, taken from the applied force by eq. (8) averaged over {L} samples "
+                 f"({L * dt:.3g} s): mean force − I·Δv/T (the inertial term in integral form, the position "
+                 f"never differentiated twice); the model's friction averaged the same way; noise floor {noise:.3g}")
+    return Comparison("friction", t, meas, path, vel, rec.normal_load, f, noise, sdx, w, min_exc, v_rest, notes=notes,
+                      average=L)
+
+
+def averaging_length(inertia: float, f_sd: float, v_sd: float, dt: float, window: int, n: int) -> int:
+    """Samples to average eq. (8) over: long enough that the inertial term I·Δv/T, from a
+    velocity with noise sd ``v_sd``, is no noisier than the averaged force (√2·I·v_sd/T ≤
+    f_sd/√L), and at least the path's smoothing window; odd, at most 1 % of the record."""
+    need = (math.sqrt(2.0) * inertia * v_sd / (dt * f_sd)) ** 2 if f_sd > 0 else 1.0
+    L = int(math.ceil(max(need, window, 5)))
+    L = min(L, max(5, n // 100))
+    return L + 1 - L % 2
+
+
+def friction_from_force(f: np.ndarray, v: np.ndarray, inertia: float, dt: float, L: int) -> np.ndarray:
+    """Eq. (8), I·ẍ = f − F, averaged over L samples centred on each one: F̄ = f̄ − I·(v(t + T/2)
+    − v(t − T/2))/T with T = L·dt, so the acceleration is never taken from a twice
+    differentiated position."""
+    h = L // 2
+    vp = np.concatenate([v[h:], np.full(h, v[-1])])
+    vm = np.concatenate([np.full(h, v[0]), v[:len(v) - h]])
+    return uniform_filter1d(f, L, mode="nearest") - inertia * (vp - vm) / (L * dt)
+
+
+def _position_comparison(rec, params, t, x, f, vel, sdx, w, min_exc, v_rest, v_noise, path, notes) -> Comparison:
+    """The plant simulated from the applied force in short windows, compared in position."""
+    dt = float(np.median(np.diff(t)))
     inertia = params.inertia
     c = 0.5 * (params.stribeck.positive.sigma2 + params.stribeck.negative.sigma2)
     tau_v = inertia / c if c > 0 else (t[-1] - t[0]) / 100
@@ -279,15 +327,87 @@ def _entry_to_u(term: Term, params: dict) -> np.ndarray:
     return np.array(out)
 
 
+class FreeSteadyCurve:
+    """Part of the alternative every effect must beat: an additive correction to the steady
+    friction S(v) of any shape — hat functions in log|v| per sliding direction, knots a factor
+    ``ratio`` apart over the velocities the recording visits — and one constant at rest. It
+    is linear in its coefficients, so it is fitted by least squares inside every evaluation
+    (profiled out). An effect is then named only for what no steady-state curve explains:
+    a change within a constant-velocity hold, between two visits of one speed, along the
+    position, with the load or with the reversals — never a misfit of S(v) that a speed
+    schedule ordered in time would make look like a drift."""
+
+    def __init__(self, velocity: np.ndarray, v_rest: float, ratio: float = 2.0):
+        n = len(velocity)
+        self.n = n
+        cols_i, cols_w = [], []  # per sample: two (column, weight) pairs
+        i0 = np.zeros(n, dtype=np.int64)
+        i1 = np.zeros(n, dtype=np.int64)
+        w0 = np.zeros(n)
+        w1 = np.zeros(n)
+        rest = np.abs(velocity) <= v_rest
+        k = 1  # column 0: the constant at rest
+        i0[rest] = 0
+        w0[rest] = 1.0
+        for sign in (1.0, -1.0):
+            m = (velocity * sign) > v_rest
+            if m.sum() < 10:
+                continue
+            u = np.log(np.abs(velocity[m]))
+            lo, hi = float(np.percentile(u, 0.5)), float(np.percentile(u, 99.5))
+            nk = max(2, int(math.ceil((hi - lo) / math.log(ratio))) + 1)
+            knots = np.linspace(lo, hi, nk) if hi > lo else np.array([lo, lo + 1.0])
+            pos = np.clip((np.clip(u, knots[0], knots[-1]) - knots[0]) / (knots[1] - knots[0]), 0, nk - 1 - 1e-12)
+            j = np.floor(pos).astype(np.int64)
+            fr = pos - j
+            i0[m], w0[m] = k + j, 1.0 - fr
+            i1[m], w1[m] = k + np.minimum(j + 1, nk - 1), fr
+            k += nk
+        self.k = k
+        self.rest = rest
+        self.i0, self.i1, self.w0, self.w1 = i0, i1, w0, w1
+
+    def fit(self, r: np.ndarray, mask: np.ndarray, model: np.ndarray | None = None) -> np.ndarray:
+        """The correction over every sample, its coefficients fitted to ``r`` on ``mask``
+        (a coefficient the mask gives no sample of stays 0). With ``model`` (the model's
+        friction), one more column: a level of its own for the friction at rest, the
+        transition curve's, which need not share S(v)'s level g."""
+        i0, i1, w0, w1 = self.i0[mask], self.i1[mask], self.w0[mask], self.w1[mask]
+        rm = r[mask]
+        k = self.k
+        K = k + (model is not None)
+        b = np.zeros(K)
+        b[:k] = np.bincount(i0, w0 * rm, k) + np.bincount(i1, w1 * rm, k)
+        G = np.zeros((K, K))
+        np.add.at(G, (i0, i0), w0 * w0)
+        np.add.at(G, (i1, i1), w1 * w1)
+        np.add.at(G, (i0, i1), w0 * w1)
+        np.add.at(G, (i1, i0), w1 * w0)
+        if model is not None:
+            e = np.where(self.rest, model, 0.0)
+            em = e[mask]
+            b[k] = em @ rm
+            G[k, k] = em @ em
+            G[k, :k] = G[:k, k] = np.bincount(i0, w0 * em, k) + np.bincount(i1, w1 * em, k)
+        d = np.diag(G).copy()
+        G[np.diag_indices(K)] += 1e-9 * (d.max() if d.size else 1.0) + (d == 0)
+        c = np.linalg.solve(G, b)
+        out = c[self.i0] * self.w0 + c[self.i1] * self.w1
+        if model is not None:
+            out = out + c[k] * np.where(self.rest, model, 0.0)
+        return out
+
+
 class Engine:
     """Predicts the compared signal for the base parameters, a level g, a stiffness κ0 and
     a list of effect entries, through ``model.effects``' factors and the simulator's scale
     arrays. Caches the stiffness-dependent simulation in friction space (a friction factor
     multiplies the output exactly there)."""
 
-    def __init__(self, params: FrictionParams, cmp_: Comparison):
+    def __init__(self, params: FrictionParams, cmp_: Comparison, free_steady: bool = True):
         self.p = params.replace(effects=())
         self.c = cmp_
+        self.free = FreeSteadyCurve(cmp_.velocity, cmp_.v_rest) if free_steady else None
         self.ctx = cmp_.context()
         self._cache_key = None
         self._cache = None
@@ -307,6 +427,11 @@ class Engine:
             return float(np.sum(r**2))
         f = 3.0 * self.c.noise
         return float(np.sum(2.0 * f * f * (np.sqrt(1.0 + (r / f) ** 2) - 1.0)))
+
+    def nuisance(self, r: np.ndarray, mask: np.ndarray, model: np.ndarray) -> np.ndarray:
+        """The alternative's free steady curve (and level at rest) fitted to the residual
+        ``r`` of the prediction ``model`` on ``mask``."""
+        return np.zeros_like(r) if self.free is None else self.free.fit(r, mask, model)
 
     def set_base(self, params: FrictionParams) -> None:
         self.p = params.replace(effects=())
@@ -328,7 +453,7 @@ class Engine:
                 self._cache = simulate_displacement(self.p, c.time, c.path, stiffness_scale=ss).friction_force
                 self._cache_key = key
                 self.sims += 1
-            return fs * self._cache
+            return c.filtered(fs * self._cache)
         return self._windows(fs, ss)
 
     def _windows(self, fs, ss) -> np.ndarray:
@@ -351,9 +476,10 @@ class FitResult:
     g: float
     k0: float
     entries: list
-    pred: np.ndarray
+    pred: np.ndarray  # the model with the alternative's free steady curve (what is scored)
     rss: float
     u: np.ndarray
+    model: np.ndarray = None  # the model alone: what the parameter set predicts
 
 
 FIT_SAMPLES = 6000  # residuals a least-squares step works on (an even subsample; the effects are slow)
@@ -400,13 +526,16 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
 
     def resid(u):
         g, kk, entries = unpack(u)
-        return (meas - engine.predict(g, kk, entries))[idx]
+        m = engine.predict(g, kk, entries)
+        r = meas - m
+        return (r - engine.nuisance(r, mask, m))[idx]
 
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4, max_nfev=max_nfev,
                         **engine.loss())
     g, kk, entries = unpack(sol.x)
-    pred = engine.predict(g, kk, entries)
-    return FitResult(g, kk, entries, pred, float(np.sum((meas - pred)[mask] ** 2)), sol.x)
+    model = engine.predict(g, kk, entries)
+    pred = model + engine.nuisance(meas - model, mask, model)
+    return FitResult(g, kk, entries, pred, float(np.sum((meas - pred)[mask] ** 2)), sol.x, model)
 
 
 def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_u: np.ndarray,
@@ -446,7 +575,9 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     def resid(u):
         g, kk, p, entries = unpack(u)
         engine.set_base(p)
-        return (meas - engine.predict(g, kk, entries))[idx]
+        m = engine.predict(g, kk, entries)
+        r = meas - m
+        return (r - engine.nuisance(r, mask, m))[idx]
 
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)
@@ -561,8 +692,8 @@ def screen(engine: Engine, name: str, term: Term, prior: list, prior_u: np.ndarr
         for a in amps:
             ua = u.copy()
             ua[free_names.index(a)] = deltas[a]
-            pa = engine.predict(base_fit.g, base_fit.k0, prior + [_entry(term, ua)])
-            cols.append(((pa - base_fit.pred)[mask]) / deltas[a])
+            col = engine.predict(base_fit.g, base_fit.k0, prior + [_entry(term, ua)]) - base_fit.model
+            cols.append(((col - engine.nuisance(col, mask, base_fit.model))[mask]) / deltas[a])
         J = np.column_stack(cols)
         coef, *_ = np.linalg.lstsq(J, r0, rcond=None)
         for a, cf in zip(amps, coef):
@@ -668,7 +799,8 @@ class Diagnosis:
     measured: np.ndarray = field(repr=False, default=None)
     model_before: np.ndarray = field(repr=False, default=None)
     model_after: np.ndarray = field(repr=False, default=None)
-    step_predictions: list = field(repr=False, default_factory=list)
+    step_predictions: list = field(repr=False, default_factory=list)  # the model alone, step by step
+    scored_predictions: list = field(repr=False, default_factory=list)  # with the free steady curve
     explaining: dict = field(repr=False, default_factory=dict)
 
     # the first named effect, for callers that show one
@@ -730,6 +862,41 @@ class Diagnosis:
         return "\n".join(L)
 
 
+def gross_sliding(cmp_: Comparison) -> np.ndarray:
+    """Samples in gross sliding: moving, and more than twice the presliding range travelled
+    since the velocity last changed sign, so the transition curve no longer matters and the
+    friction is S(v) times whatever effect acts."""
+    v, x = cmp_.velocity, cmp_.path
+    moving = np.abs(v) > cmp_.v_rest
+    sgn = np.where(moving, np.sign(v), 0.0)
+    # the sign of the last moving sample, carried over rests
+    idx = np.maximum.accumulate(np.where(moving, np.arange(len(v)), 0))
+    carried = sgn[idx]
+    start = np.r_[True, carried[1:] != carried[:-1]]
+    run_start = np.maximum.accumulate(np.where(start, np.arange(len(v)), 0))
+    travelled = np.abs(x - x[run_start])
+    return moving & (travelled > 2.0 * cmp_.z_presliding)
+
+
+STEADY_TOL = 0.05  # relative change of velocity across a window that still counts as steady
+
+
+def steady_sliding(cmp_: Comparison) -> np.ndarray:
+    """Gross sliding at a steady velocity: over a window each side (the path's smoothing and
+    the averaging, at least 5 samples) the velocity changes by less than 5 % plus three
+    velocity noise sds. There the friction is S(v) times the effects, with no transient of
+    the motion (a controller settling, a turn) whose misfit a time-ordered schedule could
+    pass off as an effect."""
+    v = cmp_.velocity
+    w = max(cmp_.window, 2 * cmp_.average, 5)
+    tol = STEADY_TOL * np.abs(v) + cmp_.v_rest
+    ok = np.ones(len(v), dtype=bool)
+    ok[:w] = ok[-w:] = False
+    ok[w:] &= np.abs(v[w:] - v[:-w]) <= tol[w:]
+    ok[:-w] &= np.abs(v[:-w] - v[w:]) <= tol[:-w]
+    return gross_sliding(cmp_) & ok
+
+
 def regime_masks(cmp_: Comparison) -> dict:
     v = cmp_.velocity
     m = {"all": np.ones(len(v), bool), "presliding": np.abs(v) <= cmp_.v_rest, "sliding, v > 0": v > cmp_.v_rest,
@@ -774,11 +941,14 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     s = settings or Settings()
     say = progress or (lambda frac, msg: None)
     say(0.01, "choosing where to compare")
-    cmp_ = comparison_of(rec, params)
+    cmp_ = comparison_of(rec, params, s.space)
     base_params = params.replace(effects=())
     cmp_.z_presliding = presliding_range(params)
+    # a reversal counts once it travels back over a quarter of the presliding range: smaller
+    # ones stay on the steep start of the transition curve and hardly load the contact
+    cmp_.min_excursion = max(cmp_.min_excursion, 0.25 * cmp_.z_presliding)
     cmp_.params = params
-    engine = Engine(base_params, cmp_)
+    engine = Engine(base_params, cmp_, s.free_steady)
     meas = cmp_.measured
     n = len(meas)
     allm = np.ones(n, bool)
@@ -802,15 +972,28 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # presliding samples after the first significant reversal: before it the model runs on
     # its virgin curve, a property of the hysteresis model itself, not of a softening contact
     presliding = (np.abs(cmp_.velocity) <= cmp_.v_rest) & (cmp_.context().reversals >= 1)
+    # the transitions: within twice the presliding range of a reversal (at rest or moving)
+    transition = ~gross_sliding(cmp_) & (cmp_.context().reversals >= 1)
+    # where each candidate must help as well, held out: a stiffness effect where the presliding
+    # spring shows (in the transitions after the first reversal), else it could only stand in for a
+    # misfit of break-away; a friction factor of time, position or reversals in steady
+    # sliding, else it could only stand in for the transition curve's misfit (largest where
+    # a session starts with presliding). The load is measured, not made by the motion: a load
+    # effect is judged wherever the load varies.
+    sliding = steady_sliding(cmp_)
+    must_show = {nm: (transition if EFFECTS[nm].acts_on == "stiffness" else sliding) for nm in EFFECTS
+                 if nm != "normal_load"}
     regimes_m = regime_masks(cmp_)
-    steps = [{"label": "model as given", "name": None, "params": None, "rms": rms0},
-             {"label": f"level ×{null.g:.3f}, stiffness ×{k0:.3f} refitted", "name": None, "params": None,
-              "rms": _rms(meas - null.pred)}]
-    steps[1]["label"] = f"level ×{null.g:.3f}, stiffness ×{k0:.3f}, n {base_params.n:.3g}, σ1 {base_params.sigma1:.3g}"
-    step_preds = [pred_given, null.pred]
+    r0 = meas - pred_given
+    steps = [{"label": "model as given", "name": None, "params": None, "rms": rms0,
+              "rms_free": _rms(r0 - engine.nuisance(r0, allm, pred_given))},
+             {"label": "", "name": None, "params": None, "rms": _rms(meas - null.model), "rms_free": _rms(meas - null.pred)}]
+    step_preds = [pred_given]
+    scored = [pred_given + engine.nuisance(r0, allm, pred_given), null.pred]
     named = []
     confounded = []
     cur, cur_terms, cur_u = null, list(prior_terms), null.u[2:] if len(null.u) > 2 else np.zeros(0)
+    fits = [(list(prior_terms), np.concatenate([[math.log(null.g)], null.u[2:]]))]  # per step: terms, u
     cands_out = []
     excluded = set()
     names = [c for c in s.candidates if c in EFFECTS and not (EFFECTS[c].needs and any(
@@ -838,15 +1021,15 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             # a fold where the candidate hardly changes the held-out prediction says nothing
             informative = np.array([np.sum((preds[i] - null_preds[i])[m] ** 2) > INFORMATIVE * max(null_sse[i], 1e-300)
                                     for i, m in enumerate(masks)])
-            if EFFECTS[name].acts_on == "stiffness":
-                # and where the presliding spring shows (at rest, after the first reversal) it
-                # must help too: elsewhere it could only stand in for a misfit of break-away
-                sp = np.array([engine.score((meas - preds[i])[m & presliding]) for i, m in enumerate(masks)])
-                npre = np.array([engine.score((meas - null_preds[i])[m & presliding]) for i, m in enumerate(masks)])
-                inf_p = np.array([np.sum((preds[i] - null_preds[i])[m & presliding] ** 2) > INFORMATIVE * max(npre[i], 1e-300)
+            where = must_show.get(name)
+            if where is not None:
+                sp = np.array([engine.score((meas - preds[i])[m & where]) for i, m in enumerate(masks)])
+                npre = np.array([engine.score((meas - null_preds[i])[m & where]) for i, m in enumerate(masks)])
+                inf_p = np.array([np.sum((preds[i] - null_preds[i])[m & where] ** 2) > INFORMATIVE * max(npre[i], 1e-300)
                                   for i, m in enumerate(masks)])
-                if not (inf_p.sum() >= 2 and np.sum((sp < npre) & inf_p) > inf_p.sum() / 2):
-                    informative = np.zeros_like(informative)  # fails the presliding test: cannot pass
+                gain_there = 1.0 - math.sqrt(np.sum(sp) / max(np.sum(npre), 1e-300))
+                if not (inf_p.sum() >= 2 and np.sum((sp < npre) & inf_p) > inf_p.sum() / 2 and gain_there >= s.min_gain):
+                    informative = np.zeros_like(informative)  # fails where it must show: cannot pass
             n_eff = _effective_n(meas - fr.pred)
             dbic = n_eff * math.log(max(fr.rss, 1e-300) / max(rss_null, 1e-300)) + len(term.free) * math.log(n_eff)
             evid.append(Evidence(name, fr.entries[-1]["params"], _rms(meas - fr.pred), sse, null_sse, informative, dbic,
@@ -894,30 +1077,36 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         cur = refit
         cur_u = refit.u[1:]
         steps.append({"label": f"+ {winner.name}", "name": winner.name, "params": dict(refit.entries[-1]["params"]),
-                      "rms": _rms(meas - refit.pred), "heldout_gain": winner.heldout_gain,
+                      "rms": _rms(meas - refit.model), "rms_free": _rms(meas - refit.pred),
+                      "heldout_gain": winner.heldout_gain,
                       "folds": f"{winner.folds_improved}/{winner.folds_informative}"})
-        step_preds.append(refit.pred)
-    say(0.95, "reporting")
-    final = cur
+        scored.append(refit.pred)
+        fits.append((list(cur_terms), refit.u))
+    say(0.95, "refitting the model that is written (without the free steady curve)")
+    written = written_fits(engine, params.replace(effects=()), fits, k0)
+    null, final = written[0], written[-1]
+    for st, wf in zip(steps[1:], written):
+        st["rms"] = _rms(meas - wf.model)
+        if wf.entries:
+            st["params"] = dict(wf.entries[-1]["params"])
+        step_preds.append(wf.model)
+    steps[1]["label"] = f"alternative: level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
     regimes = {}
     for k, m in regimes_m.items():
         if m.any():
             regimes[k] = {"n": int(m.sum()), "rms_before": _rms((meas - pred_given)[m]),
-                          "rms_base_refit": _rms((meas - null.pred)[m]), "rms_after": _rms((meas - final.pred)[m]),
+                          "rms_base_refit": _rms((meas - null.model)[m]), "rms_after": _rms((meas - final.model)[m]),
                           "noise": cmp_.noise}
-    if named or abs(null.g - 1) > 0 or k0 != 1.0:
+    new_params = params  # nothing named: the model stays as it was
+    if named:
+        # S(v) and the transition curve are rescaled: their old uncertainties no longer apply
         unc = {k: v for k, v in params.uncertainty.items()
-               if not (k.startswith("stribeck.") or k.startswith("transition_curve"))} if named else dict(params.uncertainty)
+               if not (k.startswith("stribeck.") or k.startswith("transition_curve"))}
         prov = dict(params.provenance)
-        if named:
-            prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation); level ×{final.g:.4g} and "
-                                 f"presliding stiffness ×{k0:.4g} refitted by output error in {cmp_.space}")
-        new_params = bake(base_params, final.g, k0).replace(
+        prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation); level ×{final.g:.4g} and "
+                             f"presliding stiffness ×{final.k0:.4g} refitted by output error in {cmp_.space}")
+        new_params = bake(params.replace(effects=()), final.g, final.k0).replace(
             effects=tuple(_clean_entry(e, cmp_) for e in final.entries), uncertainty=unc, provenance=prov)
-        if not named:
-            new_params = params  # nothing named: the model stays as it was
-    else:
-        new_params = params
     ctx = cmp_.context()
     explaining = {"time": ("time (s)", cmp_.time), "position": ("position", cmp_.path),
                   "velocity": ("velocity", cmp_.velocity), "reversals": ("significant reversals", ctx.reversals)}
@@ -925,10 +1114,20 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         explaining["load"] = ("normal load", cmp_.load)
     say(1.0, "done")
     return Diagnosis(effects=named, steps=steps, confounded=confounded, candidates=cands_out, rms_before=rms0,
-                     rms_after=_rms(meas - final.pred), rms_base_refit=_rms(meas - null.pred), regimes=regimes,
+                     rms_after=_rms(meas - final.model), rms_base_refit=_rms(meas - null.model), regimes=regimes,
                      space=cmp_.space, noise=cmp_.noise, notes=cmp_.notes, params_before=params,
                      params_after=new_params, settings=s, time=cmp_.time, measured=meas, model_before=pred_given,
-                     model_after=final.pred, step_predictions=step_preds, explaining=explaining)
+                     model_after=final.model, step_predictions=step_preds, scored_predictions=scored, explaining=explaining)
+
+
+def written_fits(engine: Engine, base: FrictionParams, fits: list, k0: float) -> list:
+    """The model that goes into the parameter file at every step: the base as given, its
+    level g, stiffness κ0 and the named effects refitted to the recording alone — the free
+    steady curve of the alternative helps decide, it is not part of the model."""
+    engine.free = None
+    engine.set_base(base)
+    return [_fit(engine, terms, np.concatenate([[u[0], math.log(k0)], u[1:]]), np.ones(len(engine.c.measured), bool),
+                 fit_k0=True, k0=1.0) for terms, u in fits]
 
 
 def _clean_entry(e: dict, cmp_: Comparison) -> dict:
