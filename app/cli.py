@@ -157,7 +157,9 @@ def cmd_diagnose(args) -> int:
         except FrictionError as e:
             raise UserError(f"diagnose: cannot fit a base model ({e}); give --params") from None
     try:
-        d = diagnose(rec, params, progress=_progress)
+        from ..identify.diagnose import Settings
+
+        d = diagnose(rec, params, progress=_progress, settings=Settings(space=args.space))
     except FrictionError as e:
         print(file=sys.stderr)
         raise UserError(f"diagnose: {e}") from None
@@ -355,6 +357,10 @@ def build_parser() -> argparse.ArgumentParser:
                                   "cross-validation evidence, confounded pairs) as JSON")
     d.add_argument("--html", help="write a self-contained HTML report")
     d.add_argument("--out", help="write the extended model as YAML")
+    d.add_argument("--space", choices=("friction", "position"), default="friction",
+                   help="where a recording with an applied force (no friction column) is compared: friction taken "
+                        "from eq. (8) averaged over a few samples (default), or position by output error of the "
+                        "plant simulated in short windows")
     d.set_defaults(func=cmd_diagnose)
 
     sm = sub.add_parser("samples", help="list the sample recordings shipped with the package, or copy them out")

@@ -436,12 +436,15 @@ def _diag_unit(d) -> tuple[str, str]:
 
 def diagnosis_steps_figure(d) -> go.Figure:
     """The RMS gap after every step (model as given, the refitted alternative, each effect
-    added), with the recording's noise floor."""
+    added), of the model written and beside the free steady curve the decision compares
+    with, and the recording's noise floor."""
     what, unit = _diag_unit(d)
     labels = [s["label"] for s in d.steps]
     fig = _Fig()
-    fig.add_trace(dict(type="bar", x=labels, y=[s["rms"] for s in d.steps], name="RMS gap",
+    fig.add_trace(dict(type="bar", x=labels, y=[s["rms"] for s in d.steps], name="model written",
                        marker=dict(color=[COLORS[1]] * 2 + [COLORS[0]] * (len(labels) - 2))))
+    fig.add_trace(dict(type="bar", x=labels, y=[s["rms_free"] for s in d.steps], name="beside a free S(v) (decided on)",
+                       marker=dict(color="#9ecae1")))
     fig.add_trace(_scatter(labels, [d.noise] * len(labels), mode="lines", name="noise floor",
                            line=dict(color="#444444", dash="dash")))
     return _layout(fig, f"Gap in {what}, step by step", "", f"RMS ({unit})", xaxis=dict(tickangle=-20))
@@ -470,8 +473,9 @@ def diagnosis_residual_figures(d) -> list:
         if var not in d.explaining:
             var = "time"
         label, values = d.explaining[var]
-        before = d.step_predictions[1 + i] if name else d.step_predictions[-1]
-        after = d.step_predictions[2 + i] if name else before
+        # the residual the decision saw: beside the alternative's free steady curve
+        before = d.scored_predictions[1 + i] if name else d.scored_predictions[-1]
+        after = d.scored_predictions[2 + i] if name else before
         x, r, c = _thin(values, d.measured - before, after - before, n=4000)
         fig = _Fig()
         fig.add_trace(_scatter(x, r, mode="markers", name="residual before", marker=dict(size=2, color=COLORS[1])))

@@ -22,8 +22,10 @@ def diagnosis_html(d, source: str) -> str:
         parts.append(pio.to_html(fig, include_plotlyjs=(i == 0), full_html=False, config={"displaylogo": False}))
     title = f"Friction model diagnosis — {html.escape(source)}"
     steps = _table([[s["label"], f"{s['rms']:.4g}", f"{s['rms'] / d.noise:.2f}" if d.noise else "",
-                     ", ".join(f"{k} = {v:.4g}" for k, v in (s.get("params") or {}).items())] for s in d.steps],
-                   ["step", "RMS gap", "× noise floor", "effect parameters"])
+                     f"{s['rms_free']:.4g}", ", ".join(f"{k} = {v:.4g}" for k, v in (s.get("params") or {}).items())]
+                    for s in d.steps],
+                   ["step", "RMS gap of the model written", "× noise floor", "RMS beside a free S(v) (decided on)",
+                    "effect parameters"])
     conf = ""
     if d.confounded:
         conf = "<h2>Confounded candidates</h2>" + _table(

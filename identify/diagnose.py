@@ -200,9 +200,18 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     if space == "position":
         return _position_comparison(rec, params, t, x, f, vel, sdx, w, min_exc, v_rest, v_noise, path, notes)
     f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
-    L = averaging_length(params.inertia, f_sd, v_noise, dt, w, len(t))
-    meas = friction_from_force(f, vel, params.inertia, dt, L)
-    noise = math.sqrt(f_sd**2 / L + 2.0 * (params.inertia * v_noise / (L * dt)) ** 2)
+    inertia = params.inertia
+    L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t))
+    est = inertia_from_force(f, vel, simulate_displacement(params, t, path).friction_force, dt, L, v_rest)
+    if est is not None:
+        I_hat, I_se = est
+        if I_se < 0.25 * I_hat and abs(I_hat - inertia) > 3 * I_se:
+            notes.append(f"inertia: the recording says {I_hat:.4g} ± {I_se:.2g} against the parameter file's "
+                         f"{inertia:.4g}; the recording's value is used to take friction from the applied force")
+            inertia = I_hat
+            L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t))
+    meas = friction_from_force(f, vel, inertia, dt, L)
+    noise = math.sqrt(f_sd**2 / L + 2.0 * (inertia * v_noise / ((L - 1) * dt)) ** 2)
     notes.append(f"compared in friction, taken from the applied force by eq. (8) averaged over {L} samples "
                  f"({L * dt:.3g} s): mean force − I·Δv/T (the inertial term in integral form, the position "
                  f"never differentiated twice); the model's friction averaged the same way; noise floor {noise:.3g}")
@@ -220,14 +229,49 @@ def averaging_length(inertia: float, f_sd: float, v_sd: float, dt: float, window
     return L + 1 - L % 2
 
 
-def friction_from_force(f: np.ndarray, v: np.ndarray, inertia: float, dt: float, L: int) -> np.ndarray:
-    """Eq. (8), I·ẍ = f − F, averaged over L samples centred on each one: F̄ = f̄ − I·(v(t + T/2)
-    − v(t − T/2))/T with T = L·dt, so the acceleration is never taken from a twice
-    differentiated position."""
+def inertia_from_force(f: np.ndarray, v: np.ndarray, model: np.ndarray, dt: float, L: int,
+                       v_rest: float) -> tuple[float, float] | None:
+    """The inertia I of eq. (8) from the recording: while sliding steadily, the averaged applied
+    force minus the model's averaged friction is I·(mean acceleration) plus a misfit of S(v),
+    so it is regressed on the mean acceleration beside a free steady curve (a controller's
+    hunting around each speed level is what determines I). Done over 8L and over 32L samples,
+    long windows: within a few samples how the force was logged (at the instant, or held over
+    an interval) biases the estimate. (I, standard error) of the longer only if both are
+    positive and agree within 10 % — a misfit that follows the acceleration (a transition
+    curve crossed while speeding up) moves the two apart — else None."""
+    curve = FreeSteadyCurve(v, v_rest)
+    out = []
+    for n_avg in (8 * L + 1, 32 * L + 1):
+        acc = mean_acceleration(v, dt, n_avg)
+        steady = (np.abs(v) > v_rest) & (np.abs(acc) * n_avg * dt < 0.1 * np.abs(v))
+        if steady.sum() < 50 * n_avg or np.std(acc[steady]) == 0:
+            return None
+        r = uniform_filter1d(f, n_avg, mode="nearest") - uniform_filter1d(model, n_avg, mode="nearest")
+        c, Ginv = curve.solve(r, steady, [acc])
+        e = (r - curve.curve(c) - c[-1] * acc)[steady]
+        # the averaged samples are correlated over n_avg: that many times fewer independent ones
+        out.append((float(c[-1]), math.sqrt(max(Ginv[-1, -1], 0.0) * float(np.var(e)) * n_avg)))
+    (I1, _), (I2, se2) = out
+    if I1 <= 0 or I2 <= 0 or abs(I1 - I2) > 0.1 * I2:
+        return None
+    return I2, se2
+
+
+def mean_acceleration(v: np.ndarray, dt: float, L: int) -> np.ndarray:
+    """The mean acceleration over the L = 2h + 1 samples centred on each one,
+    (v[i + h] − v[i − h])/(2h·dt): centred, so a force logged at the sampling instants, or as
+    the command held over the interval before or after, is off by at most half a sample.
+    (Near the ends the window is clipped.)"""
     h = L // 2
     vp = np.concatenate([v[h:], np.full(h, v[-1])])
     vm = np.concatenate([np.full(h, v[0]), v[:len(v) - h]])
-    return uniform_filter1d(f, L, mode="nearest") - inertia * (vp - vm) / (L * dt)
+    return (vp - vm) / (2 * h * dt)
+
+
+def friction_from_force(f: np.ndarray, v: np.ndarray, inertia: float, dt: float, L: int) -> np.ndarray:
+    """Eq. (8), I·ẍ = f − F, averaged over L samples: F̄ = f̄ − I·(mean acceleration), so the
+    acceleration is never taken from a twice differentiated position."""
+    return uniform_filter1d(f, L, mode="nearest") - inertia * mean_acceleration(v, dt, L)
 
 
 def _position_comparison(rec, params, t, x, f, vel, sdx, w, min_exc, v_rest, v_noise, path, notes) -> Comparison:
@@ -280,9 +324,10 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
     t = cmp_.time
     T = float(t[-1] - t[0])
     if name == "time_drift":
-        # τ ≥ T/30: a faster "drift" is a step between the first experiments and the rest of
-        # the session, which a schedule ordered in time makes out of any misfit
-        return Term(name, {"t0": float(t[0])}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(T / 30), math.log(20 * T))))
+        # τ ≥ T/10: a faster "drift" is a transient the first experiments of the session see
+        # alone — a step between them and the rest, which a schedule ordered in time makes
+        # out of any misfit of the model (a session must see a good part of a drift's course)
+        return Term(name, {"t0": float(t[0])}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(T / 10), math.log(20 * T))))
     if name == "normal_load":
         n = cmp_.load
         moving = np.abs(cmp_.velocity) > cmp_.v_rest
@@ -292,7 +337,8 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
         span = float(np.ptp(cmp_.path))
         lo = min(ripple_min_wavelength(cmp_), span / 4)
         return Term(name, {}, (("cs", "lin", -0.9, 0.9), ("cc", "lin", -0.9, 0.9),
-                               ("wavelength", "log", math.log(lo), math.log(span / 2))))
+                               ("wavelength", "log", math.log(lo), math.log(span / 2)),
+                               ("cs2", "lin", -0.5, 0.5), ("cc2", "lin", -0.5, 0.5)))
     if name == "cyclic_softening":
         nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1])
         return Term(name, {"min_excursion": cmp_.min_excursion},
@@ -309,9 +355,13 @@ def _entry(term: Term, u: np.ndarray) -> dict:
     for (pname, tr, _, _), ui in zip(term.free, u):
         vals[pname] = float(math.exp(ui)) if tr == "log" else float(ui)
     if term.name == "position_ripple":
+        # amplitude and phase of each harmonic from its sine and cosine parts (linear in them)
         cs, cc = vals.pop("cs"), vals.pop("cc")
         vals["a"] = float(min(math.hypot(cs, cc), 0.95))
         vals["phase"] = float(math.atan2(cc, cs))
+        cs2, cc2 = vals.pop("cs2"), vals.pop("cc2")
+        vals["a2"] = float(min(math.hypot(cs2, cc2), 0.5, max(0.0, 0.95 - vals["a"])))
+        vals["phase2"] = float(math.atan2(cc2, cs2))
     return {"name": term.name, "params": vals}
 
 
@@ -320,6 +370,8 @@ def _entry_to_u(term: Term, params: dict) -> np.ndarray:
     if term.name == "position_ripple":
         vals["cs"] = vals["a"] * math.cos(vals["phase"])
         vals["cc"] = vals["a"] * math.sin(vals["phase"])
+        vals["cs2"] = vals.get("a2", 0.0) * math.cos(vals.get("phase2", 0.0))
+        vals["cc2"] = vals.get("a2", 0.0) * math.sin(vals.get("phase2", 0.0))
     out = []
     for pname, tr, lo, hi in term.free:
         u = math.log(vals[pname]) if tr == "log" else float(vals[pname])
@@ -367,15 +419,15 @@ class FreeSteadyCurve:
         self.rest = rest
         self.i0, self.i1, self.w0, self.w1 = i0, i1, w0, w1
 
-    def fit(self, r: np.ndarray, mask: np.ndarray, model: np.ndarray | None = None) -> np.ndarray:
-        """The correction over every sample, its coefficients fitted to ``r`` on ``mask``
-        (a coefficient the mask gives no sample of stays 0). With ``model`` (the model's
-        friction), one more column: a level of its own for the friction at rest, the
-        transition curve's, which need not share S(v)'s level g."""
+    def solve(self, r: np.ndarray, mask: np.ndarray, extra=()) -> tuple[np.ndarray, np.ndarray]:
+        """Least-squares coefficients of the hat functions and of the ``extra`` columns (full
+        length arrays) fitted to ``r`` on ``mask`` (a coefficient the mask gives no sample of
+        stays 0), and the inverse normal matrix (the coefficients' covariance per unit
+        residual variance)."""
         i0, i1, w0, w1 = self.i0[mask], self.i1[mask], self.w0[mask], self.w1[mask]
         rm = r[mask]
         k = self.k
-        K = k + (model is not None)
+        K = k + len(extra)
         b = np.zeros(K)
         b[:k] = np.bincount(i0, w0 * rm, k) + np.bincount(i1, w1 * rm, k)
         G = np.zeros((K, K))
@@ -383,18 +435,29 @@ class FreeSteadyCurve:
         np.add.at(G, (i1, i1), w1 * w1)
         np.add.at(G, (i0, i1), w0 * w1)
         np.add.at(G, (i1, i0), w1 * w0)
-        if model is not None:
-            e = np.where(self.rest, model, 0.0)
-            em = e[mask]
-            b[k] = em @ rm
-            G[k, k] = em @ em
-            G[k, :k] = G[:k, k] = np.bincount(i0, w0 * em, k) + np.bincount(i1, w1 * em, k)
+        for j, col in enumerate(extra):
+            em = col[mask]
+            b[k + j] = em @ rm
+            G[k + j, :k] = G[:k, k + j] = np.bincount(i0, w0 * em, k) + np.bincount(i1, w1 * em, k)
+            for jj in range(j + 1):
+                G[k + j, k + jj] = G[k + jj, k + j] = em @ extra[jj][mask]
         d = np.diag(G).copy()
         G[np.diag_indices(K)] += 1e-9 * (d.max() if d.size else 1.0) + (d == 0)
-        c = np.linalg.solve(G, b)
-        out = c[self.i0] * self.w0 + c[self.i1] * self.w1
+        Ginv = np.linalg.inv(G)
+        return Ginv @ b, Ginv
+
+    def curve(self, c: np.ndarray) -> np.ndarray:
+        return c[self.i0] * self.w0 + c[self.i1] * self.w1
+
+    def fit(self, r: np.ndarray, mask: np.ndarray, model: np.ndarray | None = None) -> np.ndarray:
+        """The correction over every sample fitted to ``r`` on ``mask``. With ``model`` (the
+        model's friction), one more column: a level of its own for the friction at rest, the
+        transition curve's, which need not share S(v)'s level g."""
+        extra = [] if model is None else [np.where(self.rest, model, 0.0)]
+        c, _ = self.solve(r, mask, extra)
+        out = self.curve(c)
         if model is not None:
-            out = out + c[k] * np.where(self.rest, model, 0.0)
+            out = out + c[self.k] * extra[0]
         return out
 
 
@@ -658,7 +721,7 @@ def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, b
     """Starting values (transformed) for the shape parameter, before amplitudes are solved."""
     T = float(cmp_.time[-1] - cmp_.time[0])
     if name == "time_drift":
-        return [("tau", math.log(v)) for v in T * np.geomspace(0.03, 3.0, 7)]
+        return [("tau", math.log(v)) for v in T * np.geomspace(0.1, 3.0, 6)]
     if name == "cyclic_softening":
         nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1]) or 1.0
         return [("n_c", math.log(max(v, 3.0))) for v in nrev * np.geomspace(0.05, 2.0, 4)]
@@ -669,7 +732,7 @@ def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, b
 
 
 def _amplitude_names(name):
-    return {"time_drift": ("b",), "cyclic_softening": ("h",), "position_ripple": ("cs", "cc"), "normal_load": ("alpha",),
+    return {"time_drift": ("b",), "cyclic_softening": ("h",), "position_ripple": ("cs", "cc", "cs2", "cc2"), "normal_load": ("alpha",),
             "presliding_stiffness": ("kappa",)}[name]
 
 
@@ -681,8 +744,8 @@ def screen(engine: Engine, name: str, term: Term, prior: list, prior_u: np.ndarr
     r0 = (meas - base_fit.pred)[mask]
     best = None
     amps = _amplitude_names(name)
-    neutral = {"b": 0.0, "h": 0.0, "cs": 0.0, "cc": 0.0, "alpha": 0.0, "kappa": 0.0}
-    deltas = {"b": 0.1, "h": -0.2, "cs": 0.05, "cc": 0.05, "alpha": 0.5, "kappa": 0.2}
+    neutral = {"b": 0.0, "h": 0.0, "cs": 0.0, "cc": 0.0, "cs2": 0.0, "cc2": 0.0, "alpha": 0.0, "kappa": 0.0}
+    deltas = {"b": 0.1, "h": -0.2, "cs": 0.05, "cc": 0.05, "cs2": 0.05, "cc2": 0.05, "alpha": 0.5, "kappa": 0.2}
     free_names = [f[0] for f in term.free]
     for shape_name, shape_val in _screen_starts(name, term, engine.c, meas - base_fit.pred, base_fit.pred):
         u = np.array([neutral.get(n, 0.0) for n in free_names])
@@ -842,10 +905,12 @@ class Diagnosis:
         L.append(f"Compared in {self.space}; noise floor {self.noise:.4g} {u}.")
         for n in self.notes:
             L.append(f"  {n}")
-        L.append(f"RMS gap, step by step ({u}):")
+        L.append(f"RMS gap, step by step ({u}): of the model written, and beside a free steady curve S(v) (what "
+                 f"the decision compares)")
+        nz = self.noise if self.noise > 0 else float("nan")
         for s in self.steps:
-            L.append(f"  {s['label']:40s} {s['rms']:.4g}  ({s['rms'] / self.noise:.2f} × noise)" if self.noise > 0
-                     else f"  {s['label']:40s} {s['rms']:.4g}")
+            L.append(f"  {s['label']:44s} {s['rms']:.4g} ({s['rms'] / nz:.2f} × noise)   "
+                     f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
             if s.get("params"):
                 L.append("      " + ", ".join(f"{k} = {v:.4g}" for k, v in s["params"].items()))
         L.append("Per regime (RMS before → after the refit → final):")

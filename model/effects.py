@@ -44,6 +44,7 @@ class EffectParam:
     hi: float
     description: str
     lo_open: bool = False  # the bound itself is excluded
+    default: float | None = None  # the value a parameter file may leave out (None: required)
 
     def check(self, value, path: str) -> float:
         try:
@@ -101,6 +102,9 @@ class Effect:
                                  f"(it has {', '.join(self.param_names)})")
         out = {}
         for p in self.params:
+            if p.name not in values and p.default is not None:
+                out[p.name] = float(p.default)
+                continue
             if p.name not in values:
                 raise ParameterError(f"{path}.{p.name}: missing ({self.name} needs {', '.join(self.param_names)})")
             out[p.name] = p.check(values[p.name], f"{path}.{p.name}")
@@ -122,8 +126,11 @@ def _load(v, ctx):
 
 
 def _ripple(v, ctx):
+    # a periodic profile along the position (a tooth, a ball circuit, a wave of the guide):
+    # fundamental and second harmonic, as a tooth profile is seldom a sine
     x = ctx.signal("position", "position_ripple")
-    return 1.0 + v["a"] * np.sin(2.0 * np.pi * x / v["wavelength"] + v["phase"])
+    th = 2.0 * np.pi * x / v["wavelength"]
+    return 1.0 + v["a"] * np.sin(th + v["phase"]) + v.get("a2", 0.0) * np.sin(2.0 * th + v.get("phase2", 0.0))
 
 
 def _softening(v, ctx):
@@ -152,7 +159,9 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
            "a wavy guide)", "friction",
            (EffectParam("a", "1", 0.0, 0.95, "relative amplitude"),
             EffectParam("wavelength", "position", 0.0, 1e12, "period along the position", lo_open=True),
-            EffectParam("phase", "rad", -1e3, 1e3, "phase at position 0")),
+            EffectParam("phase", "rad", -1e3, 1e3, "phase at position 0"),
+            EffectParam("a2", "1", 0.0, 0.5, "relative amplitude of the second harmonic", default=0.0),
+            EffectParam("phase2", "rad", -1e3, 1e3, "phase of the second harmonic at position 0", default=0.0)),
            ("position",), _ripple, "move over the same positions at different times and speeds"),
     Effect("cyclic_softening", "the presliding spring softens (h < 0) or hardens (h > 0) with the number of "
            "significant reversals, saturating", "stiffness",

@@ -45,6 +45,19 @@ def test_effect_entry_round_trips_through_the_parameter_dict(kuka):
     assert validate_effect_entry(back.effects[0], "e")["params"]["b"] == -0.2
 
 
+def test_ripple_second_harmonic_is_optional_and_acts_as_written(kuka):
+    # a file written before the second harmonic existed still loads: a2 and phase2 default to 0
+    e = validate_effect_entry(_entry("position_ripple", a=0.1, wavelength=0.02, phase=0.3), "e")
+    assert e["params"]["a2"] == 0.0 and e["params"]["phase2"] == 0.0
+    t = np.arange(5000) * 1e-3
+    x = 0.01 * t  # one direction, 2.5 wavelengths
+    base = simulate_displacement(kuka, t, x).friction_force
+    p = kuka.replace(effects=(_entry("position_ripple", a=0.1, wavelength=0.02, phase=0.3, a2=0.04, phase2=-1.0),))
+    got = predict(p, "displacement", Signals(time=t, position=x)).friction_force
+    th = 2 * np.pi * x / 0.02
+    assert np.allclose(got, base * (1 + 0.1 * np.sin(th + 0.3) + 0.04 * np.sin(2 * th - 1.0)), rtol=1e-12, atol=1e-9)
+
+
 def test_friction_factor_along_a_displacement_is_the_physical_law(kuka):
     t = np.arange(20000) * 1e-3
     x = 0.05 * np.sin(2 * np.pi * 0.25 * t)

@@ -1,0 +1,156 @@
+"""The diagnosis's comparison, checked against expectations written out here: friction taken
+from an applied force by eq. (8) in integral form (an analytic motion whose acceleration is
+known), the alternative's free steady curve (what it may absorb and what it must leave), and
+the regimes a candidate must help in."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.ndimage import uniform_filter1d
+
+from leuven_friction.identify.diagnose import (Comparison, FreeSteadyCurve, averaging_length, friction_from_force,
+                                               gross_sliding, steady_sliding)
+
+
+def test_friction_from_force_removes_the_inertial_term_of_a_known_motion():
+    # x = A sin(ωt): I·ẍ = −I·A·ω²·sin(ωt) is far larger than the friction, an arbitrary slow
+    # signal with steps; the applied force is f = I·ẍ + F at the sampling instants
+    dt, I, A, w = 1e-3, 2.5, 0.3, 2 * np.pi * 1.7
+    t = np.arange(0, 6, dt)
+    v = A * w * np.cos(w * t)
+    F = 4.0 + 1.5 * np.sin(0.9 * t) + 0.5 * np.sign(np.sin(0.3 * t))
+    f = -I * A * w * w * np.sin(w * t) + F
+    L = 21
+    got = friction_from_force(f, v, I, dt, L)
+    want = uniform_filter1d(F, L, mode="nearest")  # the friction seen through the same average
+    inner = slice(L, len(t) - L)
+    assert I * A * w * w > 80.0  # the inertial force dwarfs the friction
+    # what is left is the difference between a window's mean acceleration and the central
+    # difference of the velocity: relative (ω·T)²/24 with T = L·dt, under 0.2 %
+    assert np.max(np.abs(got - want)[inner]) < 2e-3 * I * A * w * w
+    # averaging the force alone would leave most of the inertial term
+    assert np.max(np.abs(uniform_filter1d(f, L) - want)[inner]) > 0.9 * I * A * w * w
+
+
+def test_averaging_length_makes_the_inertial_term_no_noisier_than_the_averaged_force():
+    # √2·I·σv/T ≤ σf/√L with T = L·dt: L ≥ (√2·I·σv/(dt·σf))² = (√2·1·1e-3/(1e-3·0.1))² = 200
+    assert averaging_length(1.0, 0.1, 1e-3, 1e-3, 5, 100_000) == 201
+    # a quiet velocity: the path's smoothing window sets it
+    assert averaging_length(1.0, 0.1, 1e-5, 1e-3, 9, 100_000) == 9
+    # never more than 1 % of the record
+    assert averaging_length(1.0, 0.1, 1e-3, 1e-3, 5, 5_000) == 51
+
+
+def _holds(speeds, n_per=400):
+    """A velocity schedule: constant-velocity holds, a short rest between them."""
+    v = []
+    for s in speeds:
+        v += [s] * n_per + [0.0] * 50
+    return np.array(v, dtype=float)
+
+
+def test_free_steady_curve_absorbs_any_function_of_velocity():
+    v = _holds([0.01, -0.01, 0.03, -0.05, 0.1, -0.2, 0.4, -0.4, 1.0, -1.0])
+    curve = FreeSteadyCurve(v, v_rest=1e-3)
+    r = np.where(v > 0, 0.7 * np.log(np.abs(v) + 1e-9), np.where(v < 0, -0.2 * np.abs(v) ** 0.5, 0.0)) + 0.3 * (v == 0)
+    fitted = curve.fit(r, np.ones(len(v), bool))
+    # hat functions a factor 2 apart interpolate a smooth curve of log|v|; the constants at
+    # rest and the log-law are captured to well within 2 % of the signal
+    assert np.sqrt(np.mean((r - fitted) ** 2)) < 0.02 * np.sqrt(np.mean(r**2))
+
+
+def test_free_steady_curve_leaves_a_change_between_two_visits_of_one_speed():
+    # the same speeds visited twice, minutes apart: a drift in time changes the friction
+    # between the visits, which no function of velocity can hold
+    speeds = [0.02, -0.02, 0.2, -0.2, 2.0, -2.0]
+    v = _holds(speeds + speeds)
+    n = len(v)
+    drift = np.linspace(0.0, 1.0, n)
+    curve = FreeSteadyCurve(v, v_rest=1e-3)
+    left = drift - curve.fit(drift, np.ones(n, bool))
+    # the best a function of v can do is the mean of the two visits: half the step between
+    # them (0.5 here) remains, ±0.25 on every sample, plus the within-hold slopes
+    assert np.sqrt(np.mean(left**2)) > 0.2
+    # fitted on one half of the samples it predicts the other half no better
+    half = np.arange(n) < n // 2
+    pred = curve.fit(drift, half)
+    assert np.sqrt(np.mean((drift - pred)[~half] ** 2)) > 0.3
+
+
+def test_the_level_at_rest_is_a_free_scale_of_the_model_there():
+    v = _holds([0.05, -0.05, 0.1, -0.1])
+    rest = v == 0
+    model = np.where(rest, np.linspace(-3, 3, len(v)), 1.0)
+    r = np.where(rest, 0.25 * model, 0.0)  # the model at rest is 25 % off in level
+    curve = FreeSteadyCurve(v, v_rest=1e-3)
+    assert np.max(np.abs(r - curve.fit(r, np.ones(len(v), bool), model))) < 1e-9
+    # without the model column only a constant at rest is free: most of it stays
+    assert np.sqrt(np.mean((r - curve.fit(r, np.ones(len(v), bool)))[rest] ** 2)) > 0.5 * np.sqrt(np.mean(r[rest] ** 2))
+
+
+def _cmp(t, x, v, z_pres, v_rest=1e-3, window=5):
+    return Comparison("friction", t, np.zeros_like(t), x, v, None, None, 0.1, 1e-6, window, 1e-5, v_rest,
+                      z_presliding=z_pres)
+
+
+def test_gross_and_steady_sliding_follow_the_travel_since_the_last_reversal():
+    dt = 1e-3
+    t = np.arange(0, 4, dt)
+    # forth at 0.1 for 2 s, then back at 0.1: a reversal at t = 2
+    v = np.where(t < 2, 0.1, -0.1)
+    x = np.cumsum(v) * dt
+    c = _cmp(t, x, v, z_pres=0.01)
+    gross = gross_sliding(c)
+    # more than 2·z_pres = 0.02 travelled since the reversal: 0.2 s after it at 0.1/s
+    after = (t > 2.0) & (t < 2.19)
+    assert not gross[after].any()
+    assert gross[(t > 2.21) & (t < 3.9)].all()
+    assert gross[(t > 0.21) & (t < 1.9)].all()
+    steady = steady_sliding(c)
+    assert steady[(t > 2.5) & (t < 3.9)].all() and not steady[np.abs(t - 2.0) < 0.003].any()
+    # a change of speed within a few samples (a controller stepping to the next level) is not
+    # steady around it; either side of it is
+    v2 = np.clip(0.1 + (t - 2.0) * 20.0, 0.1, 0.3)  # 0.1 → 0.3 in 10 ms
+    c2 = _cmp(t, np.cumsum(v2) * dt, v2, z_pres=0.01)
+    s2 = steady_sliding(c2)
+    assert s2[(t > 0.5) & (t < 1.99)].all() and s2[(t > 2.02) & (t < 3.99)].all()
+    assert not s2[(t > 2.0) & (t < 2.009)].any()
+    # no reversal: gross sliding once 2·z_pres is travelled from the start
+    assert math.isclose(gross_sliding(c2).mean(), (t > 0.2).mean(), abs_tol=0.002)
+
+
+def test_inertia_from_force_recovers_the_mass_of_a_controlled_plant():
+    # a mass I under a noisy velocity PI loop holding speed levels, friction S(v) = a smooth
+    # Coulomb-plus-viscous law; integrated here with 20 substeps a sample (not the product's
+    # simulator); the model's friction handed over is 20 % off in level (a misfit of S(v),
+    # which the free steady curve must take up, not the inertia)
+    from leuven_friction.identify.diagnose import inertia_from_force
+
+    rng = np.random.default_rng(3)
+    I, dt, sub = 0.8, 2e-3, 20
+    S = lambda v: 2.0 * np.tanh(v / 1e-3) + 5.0 * v  # noqa: E731
+    levels = [0.05, -0.05, 0.2, -0.2, 0.6, -0.6] * 2
+    n_per = 1500
+    v_cmd = np.repeat(levels, n_per)
+    x = v = integ = 0.0
+    xs, vs, fs = [], [], []
+    for k, vc in enumerate(v_cmd):
+        noise = rng.normal(0, 0.01)  # a noisy tachometer makes the loop hunt
+        for _ in range(sub):  # the loop runs at the internal rate, the log decimates
+            e = vc - (v + noise)
+            integ += e * dt / sub
+            u = 40.0 * e + 400.0 * integ
+            v += (u - S(v)) / I * (dt / sub)
+            x += v * dt / sub
+        xs.append(x)
+        vs.append(v)
+        fs.append(u)
+    v = np.array(vs)
+    f = np.array(fs)
+    got = inertia_from_force(f, v, 1.2 * S(v), dt, 5, 1e-3)
+    assert got is not None
+    I_hat, se = got
+    # within its stated uncertainty (conservative: the averaged samples are counted as
+    # independent only once per window), small enough to correct a file's value off by half
+    assert abs(I_hat - I) < 3 * se and se < 0.2 * I
