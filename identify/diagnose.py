@@ -202,13 +202,12 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
     inertia = params.inertia
     L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t))
-    est = inertia_from_force(f, vel, simulate_displacement(params, t, path).friction_force, dt, L, v_rest)
+    est = inertia_from_force(f, vel, dt, L, v_rest)
     if est is not None:
-        I_hat, I_se = est
-        if I_se < 0.25 * I_hat and abs(I_hat - inertia) > 3 * I_se:
-            notes.append(f"inertia: the recording says {I_hat:.4g} ± {I_se:.2g} against the parameter file's "
-                         f"{inertia:.4g}; the recording's value is used to take friction from the applied force")
-            inertia = I_hat
+        if est.stderr < 0.25 * est.value and abs(est.value - inertia) > 3 * est.stderr:
+            notes.append(f"inertia: the recording says {est.value:.4g} ± {est.stderr:.2g} against the parameter "
+                         f"file's {inertia:.4g}; the recording's value is used to take friction from the applied force")
+            inertia = est.value
             L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t))
     meas = friction_from_force(f, vel, inertia, dt, L)
     noise = math.sqrt(f_sd**2 / L + 2.0 * (inertia * v_noise / ((L - 1) * dt)) ** 2)
@@ -229,32 +228,52 @@ def averaging_length(inertia: float, f_sd: float, v_sd: float, dt: float, window
     return L + 1 - L % 2
 
 
-def inertia_from_force(f: np.ndarray, v: np.ndarray, model: np.ndarray, dt: float, L: int,
-                       v_rest: float) -> tuple[float, float] | None:
-    """The inertia I of eq. (8) from the recording: while sliding steadily, the averaged applied
-    force minus the model's averaged friction is I·(mean acceleration) plus a misfit of S(v),
-    so it is regressed on the mean acceleration beside a free steady curve (a controller's
-    hunting around each speed level is what determines I). Done over 8L and over 32L samples,
-    long windows: within a few samples how the force was logged (at the instant, or held over
-    an interval) biases the estimate. (I, standard error) of the longer only if both are
-    positive and agree within 10 % — a misfit that follows the acceleration (a transition
-    curve crossed while speeding up) moves the two apart — else None."""
+JACKKNIFE_BLOCKS = 10
+
+
+@dataclass(frozen=True)
+class InertiaEstimate:
+    value: float
+    stderr: float
+
+
+def inertia_from_force(f: np.ndarray, v: np.ndarray, dt: float, L: int, v_rest: float) -> InertiaEstimate | None:
+    """The inertia I of eq. (8) from the recording alone: while sliding steadily the friction
+    is a function of the velocity, S(v), so the averaged applied force is I·(mean
+    acceleration) plus the averaged steady curve; it is regressed on the mean acceleration
+    beside a free steady curve (a controller's hunting around each speed level is what
+    determines I). No model enters: a model's own dynamics (its presliding state lagging the
+    motion) would follow the acceleration and bias I. Done over 8L and over 32L samples; the
+    estimate of the longer only if both are positive and agree within 10 % (anything else
+    that follows the acceleration moves them apart), else None; its standard error by the
+    jackknife over ten blocks of time. A force logged once a sample from a controller whose
+    proportional term moves within the sample reads I low by about kp·dt/2."""
     curve = FreeSteadyCurve(v, v_rest)
-    out = []
+    rows = np.arange(len(v))
+    hats = np.zeros((len(v), curve.k))
+    np.add.at(hats, (rows, curve.i0), curve.w0)
+    np.add.at(hats, (rows, curve.i1), curve.w1)
+
+    def solve(n_avg, mask):
+        # MA(f) = I·(mean acceleration) + MA(S(v)): the steady curve averaged like the force
+        X = np.column_stack([uniform_filter1d(hats, n_avg, axis=0, mode="nearest"), mean_acceleration(v, dt, n_avg)])
+        coef, *_ = np.linalg.lstsq(X[mask], uniform_filter1d(f, n_avg, mode="nearest")[mask], rcond=None)
+        return float(coef[-1])
+
+    est = {}
     for n_avg in (8 * L + 1, 32 * L + 1):
         acc = mean_acceleration(v, dt, n_avg)
         steady = (np.abs(v) > v_rest) & (np.abs(acc) * n_avg * dt < 0.1 * np.abs(v))
         if steady.sum() < 50 * n_avg or np.std(acc[steady]) == 0:
             return None
-        r = uniform_filter1d(f, n_avg, mode="nearest") - uniform_filter1d(model, n_avg, mode="nearest")
-        c, Ginv = curve.solve(r, steady, [acc])
-        e = (r - curve.curve(c) - c[-1] * acc)[steady]
-        # the averaged samples are correlated over n_avg: that many times fewer independent ones
-        out.append((float(c[-1]), math.sqrt(max(Ginv[-1, -1], 0.0) * float(np.var(e)) * n_avg)))
-    (I1, _), (I2, se2) = out
+        est[n_avg] = (solve(n_avg, steady), steady)
+    (I1, _), (I2, steady) = est.values()
     if I1 <= 0 or I2 <= 0 or abs(I1 - I2) > 0.1 * I2:
         return None
-    return I2, se2
+    n2 = 32 * L + 1
+    block = np.minimum(rows * JACKKNIFE_BLOCKS // len(v), JACKKNIFE_BLOCKS - 1)
+    jk = np.array([solve(n2, steady & (block != k)) for k in range(JACKKNIFE_BLOCKS)])
+    return InertiaEstimate(I2, math.sqrt((JACKKNIFE_BLOCKS - 1) / JACKKNIFE_BLOCKS * float(np.sum((jk - jk.mean()) ** 2))))
 
 
 def mean_acceleration(v: np.ndarray, dt: float, L: int) -> np.ndarray:
@@ -927,6 +946,22 @@ class Diagnosis:
         return "\n".join(L)
 
 
+def median_stroke(cmp_: Comparison) -> float:
+    """Median travel between two reversals of the motion (runs of one velocity sign)."""
+    v, x = cmp_.velocity, cmp_.path
+    moving = np.abs(v) > cmp_.v_rest
+    sgn = np.sign(v[moving])
+    if len(sgn) < 2:
+        return 0.0
+    xm = x[moving]
+    edges = np.flatnonzero(np.diff(sgn) != 0) + 1
+    starts = np.r_[0, edges]
+    ends = np.r_[edges - 1, len(xm) - 1]
+    travel = np.abs(xm[ends] - xm[starts])
+    travel = travel[travel > 0]
+    return float(np.median(travel)) if len(travel) else 0.0
+
+
 def gross_sliding(cmp_: Comparison) -> np.ndarray:
     """Samples in gross sliding: moving, and more than twice the presliding range travelled
     since the velocity last changed sign, so the transition curve no longer matters and the
@@ -1009,6 +1044,13 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     cmp_ = comparison_of(rec, params, s.space)
     base_params = params.replace(effects=())
     cmp_.z_presliding = presliding_range(params)
+    stroke = median_stroke(cmp_)
+    if stroke > 0 and cmp_.z_presliding > stroke / 8:
+        # a transition curve held from another machine (a fit without presliding data keeps
+        # its starting file's) can claim a presliding range as long as the strokes
+        cmp_.notes.append(f"the model's presliding range {cmp_.z_presliding:.3g} is over an eighth of the median "
+                          f"stroke {stroke:.3g}: {stroke / 8:.3g} is used to tell gross sliding")
+        cmp_.z_presliding = stroke / 8
     # a reversal counts once it travels back over a quarter of the presliding range: smaller
     # ones stay on the steep start of the transition curve and hardly load the contact
     cmp_.min_excursion = max(cmp_.min_excursion, 0.25 * cmp_.z_presliding)

@@ -11,7 +11,7 @@ and two sections of the source checkout (``bench/`` beside the sources, built on
 generators), run when they can be imported and skipped with a note in an installed copy:
 
 * ``identification``  fit of a 1,000,000-row generator recording with the refinement;
-* ``diagnosis``       the whole diagnosis of a 100,000-sample recording.
+* ``diagnosis``       the whole diagnosis of a 100,000-sample tribometer and robot-joint recording.
 """
 
 from __future__ import annotations

@@ -105,3 +105,33 @@ def test_final_model_predicts_through_the_model_path():
     load = d.explaining["load"][1] if "load" in d.explaining else None
     got = predict(d.params_after, "displacement", Signals(time=d.time, position=path, load=load)).friction_force
     assert np.allclose(got, d.model_after, rtol=1e-6, atol=1e-9 * np.max(np.abs(got)))
+
+
+def test_hidden_effect_suite_sample_on_fresh_seeds_meets_the_targets():
+    # a sample of the hidden-effect suite on seeds the suite does not use, chosen before the
+    # run: each of the three physically-driven effects once per kind of recording, and two
+    # controls per kind. Targets of the whole suite: the right effect named in ≥ 90 % of the
+    # cases, a false effect on ≤ 5 % of the controls — on this sample of 9 and 6 cases, at
+    # most one miss and no false effect. (Cyclic softening is left out: its footprint in
+    # these recordings is below the base model's misfit of the transitions; README.)
+    from bench.diagnosis import _diagnose_case
+
+    effects = ("time_drift", "normal_load", "position_ripple")
+    kinds = ("robot_joint", "linear_stage", "tribometer")
+    rows = []
+    seed = 7000
+    for eff in effects:
+        for kind in kinds:
+            rows.append(_diagnose_case(kind, seed, (eff,)))
+            seed += 1
+    controls = []
+    for kind in kinds * 2:
+        controls.append(_diagnose_case(kind, seed, ()))
+        seed += 1
+    right = [r["expected"][0] in r["named"] for r in rows]
+    assert sum(right) >= len(rows) - 1, [(r["kind"], r["hidden"], r["named"]) for r in rows]
+    assert not any(r["named"] for r in controls), [(r["kind"], r["named"]) for r in controls]
+    # whenever the right effect is named, the gap beside the free steady curve shrinks
+    for r in rows:
+        if r["expected"][0] in r["named"]:
+            assert r["rms_free_steps"][-1] < 0.9 * r["rms_free_steps"][1], r

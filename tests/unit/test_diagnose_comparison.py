@@ -123,8 +123,7 @@ def test_gross_and_steady_sliding_follow_the_travel_since_the_last_reversal():
 def test_inertia_from_force_recovers_the_mass_of_a_controlled_plant():
     # a mass I under a noisy velocity PI loop holding speed levels, friction S(v) = a smooth
     # Coulomb-plus-viscous law; integrated here with 20 substeps a sample (not the product's
-    # simulator); the model's friction handed over is 20 % off in level (a misfit of S(v),
-    # which the free steady curve must take up, not the inertia)
+    # simulator); S(v) is not given to the estimator (its free steady curve takes it up)
     from leuven_friction.identify.diagnose import inertia_from_force
 
     rng = np.random.default_rng(3)
@@ -148,9 +147,11 @@ def test_inertia_from_force_recovers_the_mass_of_a_controlled_plant():
         fs.append(u)
     v = np.array(vs)
     f = np.array(fs)
-    got = inertia_from_force(f, v, 1.2 * S(v), dt, 5, 1e-3)
+    got = inertia_from_force(f, v, dt, 5, 1e-3)
     assert got is not None
-    I_hat, se = got
-    # within its stated uncertainty (conservative: the averaged samples are counted as
-    # independent only once per window), small enough to correct a file's value off by half
-    assert abs(I_hat - I) < 3 * se and se < 0.2 * I
+    I_hat, se = got.value, got.stderr
+    # the force is logged once a sample, at the end of it, while the proportional term moves
+    # with the velocity within it: the logged force lags the sample's mean force by
+    # kp·a·dt/2, so the inertia read from the log is I − kp·dt/2
+    expected = I - 40.0 * dt / 2
+    assert abs(I_hat - expected) < 3 * se + 0.01 * I and se < 0.05 * I
