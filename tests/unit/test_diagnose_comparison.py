@@ -6,11 +6,15 @@ the regimes a candidate must help in."""
 import math
 
 import numpy as np
-import pytest
+from leuven_friction.identify.diagnose import (
+    Comparison,
+    FreeSteadyCurve,
+    averaging_length,
+    friction_from_force,
+    gross_sliding,
+    steady_sliding,
+)
 from scipy.ndimage import uniform_filter1d
-
-from leuven_friction.identify.diagnose import (Comparison, FreeSteadyCurve, averaging_length, friction_from_force,
-                                               gross_sliding, steady_sliding)
 
 
 def test_friction_from_force_removes_the_inertial_term_of_a_known_motion():
@@ -155,3 +159,22 @@ def test_inertia_from_force_recovers_the_mass_of_a_controlled_plant():
     # kp·a·dt/2, so the inertia read from the log is I − kp·dt/2
     expected = I - 40.0 * dt / 2
     assert abs(I_hat - expected) < 3 * se + 0.01 * I and se < 0.05 * I
+
+
+def test_ripple_wavelength_is_read_off_the_spectrum_against_position():
+    # strokes back and forth over 0.3 (position units) at varying speed; the relative residual
+    # is a ripple of wavelength 0.0237 with a second harmonic: the strongest peak of its
+    # spectrum against position is the fundamental, found to within a fraction of a bin
+    from leuven_friction.identify.diagnose import _ripple_wavelengths
+
+    dt = 1e-3
+    t = np.arange(0, 60, dt)
+    x = 0.15 * (1 - np.cos(2 * np.pi * t / 7.0)) + 0.002 * np.sin(2 * np.pi * t / 1.3)
+    v = np.gradient(x, dt)
+    base = 10.0 * np.sign(v)
+    lam = 0.0237
+    resid = base * (0.1 * np.sin(2 * np.pi * x / lam) + 0.03 * np.sin(4 * np.pi * x / lam + 1.0))
+    c = _cmp(t, x, v, z_pres=1e-4)
+    got = _ripple_wavelengths(c, resid, base, lam_min=1e-3)
+    assert got and abs(got[0] - lam) < 0.02 * lam
+    assert all(g > 0 and np.isfinite(g) for g in got)
