@@ -441,24 +441,37 @@ class FreeSteadyCurve:
             k += nk
         self.k = k
         self.rest = rest
+        self._cache = {}
         self.i0, self.i1, self.w0, self.w1 = i0, i1, w0, w1
+
+    def _on(self, mask: np.ndarray) -> tuple:
+        """The hat functions on ``mask`` and their normal matrix, kept for the masks in use (a
+        least-squares fit evaluates the same mask many times)."""
+        hit = self._cache.get(id(mask))
+        if hit is not None and hit[0] is mask:
+            return hit[1]
+        i0, i1, w0, w1 = self.i0[mask], self.i1[mask], self.w0[mask], self.w1[mask]
+        k = self.k
+        G = (np.bincount(i0 * k + i0, w0 * w0, k * k) + np.bincount(i1 * k + i1, w1 * w1, k * k)
+             + np.bincount(i0 * k + i1, w0 * w1, k * k) + np.bincount(i1 * k + i0, w1 * w0, k * k)).reshape(k, k)
+        if len(self._cache) >= 16:
+            self._cache.clear()
+        self._cache[id(mask)] = (mask, (i0, i1, w0, w1, G))
+        return i0, i1, w0, w1, G
 
     def solve(self, r: np.ndarray, mask: np.ndarray, extra=()) -> tuple[np.ndarray, np.ndarray]:
         """Least-squares coefficients of the hat functions and of the ``extra`` columns (full
         length arrays) fitted to ``r`` on ``mask`` (a coefficient the mask gives no sample of
         stays 0), and the inverse normal matrix (the coefficients' covariance per unit
         residual variance)."""
-        i0, i1, w0, w1 = self.i0[mask], self.i1[mask], self.w0[mask], self.w1[mask]
+        i0, i1, w0, w1, Ghats = self._on(mask)
         rm = r[mask]
         k = self.k
         K = k + len(extra)
         b = np.zeros(K)
         b[:k] = np.bincount(i0, w0 * rm, k) + np.bincount(i1, w1 * rm, k)
         G = np.zeros((K, K))
-        np.add.at(G, (i0, i0), w0 * w0)
-        np.add.at(G, (i1, i1), w1 * w1)
-        np.add.at(G, (i0, i1), w0 * w1)
-        np.add.at(G, (i1, i0), w1 * w0)
+        G[:k, :k] = Ghats
         for j, col in enumerate(extra):
             em = col[mask]
             b[k + j] = em @ rm
@@ -484,6 +497,14 @@ class FreeSteadyCurve:
             out = out + c[self.k] * extra[0]
         return out
 
+    def residual_at(self, r: np.ndarray, idx: np.ndarray, mask: np.ndarray, model: np.ndarray) -> np.ndarray:
+        """``r`` minus the correction fitted to it on ``mask`` (with the level at rest),
+        evaluated at the samples ``idx`` only (what a least-squares step works on)."""
+        extra = [np.where(self.rest, model, 0.0)]
+        c, _ = self.solve(r, mask, extra)
+        i0, i1 = self.i0[idx], self.i1[idx]
+        return r[idx] - (c[i0] * self.w0[idx] + c[i1] * self.w1[idx] + c[self.k] * extra[0][idx])
+
 
 class Engine:
     """Predicts the compared signal for the base parameters, a level g, a stiffness κ0 and
@@ -495,6 +516,7 @@ class Engine:
         self.p = params.replace(effects=())
         self.c = cmp_
         self.free = FreeSteadyCurve(cmp_.velocity, cmp_.v_rest) if free_steady else None
+        self._thin_masks = {}
         self.ctx = cmp_.context()
         self._cache_key = None
         self._cache = None
@@ -519,6 +541,20 @@ class Engine:
         """The alternative's free steady curve (and level at rest) fitted to the residual
         ``r`` of the prediction ``model`` on ``mask``."""
         return np.zeros_like(r) if self.free is None else self.free.fit(r, mask, model)
+
+    def residual_at(self, r: np.ndarray, idx: np.ndarray, model: np.ndarray) -> np.ndarray:
+        """The residual ``r`` beside the free steady curve fitted on the samples ``idx`` (a
+        least-squares step's thinned set: ~20 coefficients need no more), at those samples."""
+        if self.free is None:
+            return r[idx]
+        key = self._thin_masks.get(id(idx))
+        if key is None or key[0] is not idx:
+            m = np.zeros(len(r), dtype=bool)
+            m[idx] = True
+            if len(self._thin_masks) >= 16:
+                self._thin_masks.clear()
+            self._thin_masks[id(idx)] = key = (idx, m)
+        return self.free.residual_at(r, idx, key[1], model)
 
     def set_base(self, params: FrictionParams) -> None:
         self.p = params.replace(effects=())
@@ -614,8 +650,7 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
     def resid(u):
         g, kk, entries = unpack(u)
         m = engine.predict(g, kk, entries)
-        r = meas - m
-        return (r - engine.nuisance(r, mask, m))[idx]
+        return engine.residual_at(meas - m, idx, m)
 
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4, max_nfev=max_nfev,
                         **engine.loss())
@@ -663,8 +698,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
         g, kk, p, entries = unpack(u)
         engine.set_base(p)
         m = engine.predict(g, kk, entries)
-        r = meas - m
-        return (r - engine.nuisance(r, mask, m))[idx]
+        return engine.residual_at(meas - m, idx, m)
 
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)

@@ -130,7 +130,10 @@ def _ripple(v, ctx):
     # fundamental and second harmonic, as a tooth profile is seldom a sine
     x = ctx.signal("position", "position_ripple")
     th = 2.0 * np.pi * x / v["wavelength"]
-    return 1.0 + v["a"] * np.sin(th + v["phase"]) + v.get("a2", 0.0) * np.sin(2.0 * th + v.get("phase2", 0.0))
+    out = 1.0 + v["a"] * np.sin(th + v["phase"])
+    if v.get("a2", 0.0):
+        out += v["a2"] * np.sin(2.0 * th + v.get("phase2", 0.0))
+    return out
 
 
 def _softening(v, ctx):
