@@ -12,8 +12,9 @@ out-of-sample evidence, add it, refit, look again.
    in short windows). The noise floor is estimated from the recording and printed.
 2. **The alternative** every effect must beat: the current model with its level g,
    presliding stiffness κ0, n, σ1 and S(v) levels refitted, beside a free steady curve
-   (``FreeSteadyCurve``: any correction to S(v), and a level of its own at rest), which is
-   linear and profiled out of every evaluation.
+   (``FreeSteadyCurve``: any correction to S(v), a level of its own at rest, and for friction
+   taken from an applied force a free inertia), which is linear and profiled out of every
+   evaluation.
 3. **Candidates** (``model.effects.EFFECTS``): each is screened (its shape parameter — time
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
@@ -90,6 +91,7 @@ class Comparison:
     z_presliding: float = 0.0  # the model's presliding range (position units)
     params: FrictionParams | None = None  # the model the comparison was set up for
     average: int = 1  # friction from an applied force: predictions averaged over this many samples too
+    acceleration: np.ndarray | None = None  # friction from an applied force: the mean acceleration used
 
     def filtered(self, friction: np.ndarray) -> np.ndarray:
         """A predicted friction seen as the measurement sees it (the same moving average)."""
@@ -221,7 +223,7 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
                  f"({L * dt:.3g} s): mean force − I·Δv/T (the inertial term in integral form, the position "
                  f"never differentiated twice); the model's friction averaged the same way; noise floor {noise:.3g}")
     return Comparison("friction", t, meas, path, vel, rec.normal_load, f, noise, sdx, w, min_exc, v_rest, notes=notes,
-                      average=L)
+                      average=L, acceleration=mean_acceleration(vel, dt, L))
 
 
 def averaging_length(inertia: float, f_sd: float, v_sd: float, dt: float, window: int, n: int) -> int:
@@ -407,15 +409,20 @@ def _entry_to_u(term: Term, params: dict) -> np.ndarray:
 class FreeSteadyCurve:
     """Part of the alternative every effect must beat: an additive correction to the steady
     friction S(v) of any shape — hat functions in log|v| per sliding direction, knots a factor
-    ``ratio`` apart over the velocities the recording visits — and one constant at rest. It
+    ``ratio`` apart over the velocities the recording visits — one constant at rest, and (for
+    friction taken from an applied force) a term proportional to the mean acceleration. It
     is linear in its coefficients, so it is fitted by least squares inside every evaluation
     (profiled out). An effect is then named only for what no steady-state curve explains:
     a change within a constant-velocity hold, between two visits of one speed, along the
     position, with the load or with the reversals — never a misfit of S(v) that a speed
     schedule ordered in time would make look like a drift."""
 
-    def __init__(self, velocity: np.ndarray, v_rest: float, ratio: float = 2.0):
+    def __init__(self, velocity: np.ndarray, v_rest: float, ratio: float = 2.0,
+                 acceleration: np.ndarray | None = None):
         n = len(velocity)
+        # friction taken from an applied force: the inertia is free as well (a term I·ā, linear
+        # in I), so an inertia held by the fit, or off, is not a residual an effect could take
+        self.acceleration = acceleration
         self.n = n
         i0 = np.zeros(n, dtype=np.int64)
         i1 = np.zeros(n, dtype=np.int64)
@@ -490,20 +497,27 @@ class FreeSteadyCurve:
         """The correction over every sample fitted to ``r`` on ``mask``. With ``model`` (the
         model's friction), one more column: a level of its own for the friction at rest, the
         transition curve's, which need not share S(v)'s level g."""
-        extra = [] if model is None else [np.where(self.rest, model, 0.0)]
+        extra = self._extra(model)
         c, _ = self.solve(r, mask, extra)
         out = self.curve(c)
-        if model is not None:
-            out = out + c[self.k] * extra[0]
+        for j, col in enumerate(extra):
+            out = out + c[self.k + j] * col
         return out
+
+    def _extra(self, model) -> list:
+        extra = [] if model is None else [np.where(self.rest, model, 0.0)]
+        return extra + ([] if self.acceleration is None else [self.acceleration])
 
     def residual_at(self, r: np.ndarray, idx: np.ndarray, mask: np.ndarray, model: np.ndarray) -> np.ndarray:
         """``r`` minus the correction fitted to it on ``mask`` (with the level at rest),
         evaluated at the samples ``idx`` only (what a least-squares step works on)."""
-        extra = [np.where(self.rest, model, 0.0)]
+        extra = self._extra(model)
         c, _ = self.solve(r, mask, extra)
         i0, i1 = self.i0[idx], self.i1[idx]
-        return r[idx] - (c[i0] * self.w0[idx] + c[i1] * self.w1[idx] + c[self.k] * extra[0][idx])
+        out = r[idx] - (c[i0] * self.w0[idx] + c[i1] * self.w1[idx])
+        for j, col in enumerate(extra):
+            out -= c[self.k + j] * col[idx]
+        return out
 
 
 class Engine:
@@ -515,7 +529,7 @@ class Engine:
     def __init__(self, params: FrictionParams, cmp_: Comparison, free_steady: bool = True):
         self.p = params.replace(effects=())
         self.c = cmp_
-        self.free = FreeSteadyCurve(cmp_.velocity, cmp_.v_rest) if free_steady else None
+        self.free = FreeSteadyCurve(cmp_.velocity, cmp_.v_rest, acceleration=cmp_.acceleration) if free_steady else None
         self._thin_masks = {}
         self.ctx = cmp_.context()
         self._cache_key = None

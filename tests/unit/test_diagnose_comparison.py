@@ -178,3 +178,16 @@ def test_ripple_wavelength_is_read_off_the_spectrum_against_position():
     got = _ripple_wavelengths(c, resid, base, lam_min=1e-3)
     assert got and abs(got[0] - lam) < 0.02 * lam
     assert all(g > 0 and np.isfinite(g) for g in got)
+
+
+def test_free_steady_curve_holds_an_inertia_error_when_given_the_acceleration():
+    # friction taken from an applied force with the wrong inertia carries ΔI·ā; beside the
+    # acceleration column that residual is taken up entirely, without it barely at all
+    rng = np.random.default_rng(5)
+    v = _holds([0.05, -0.05, 0.2, -0.2]) + 0.002 * rng.standard_normal(4 * 450)
+    acc = np.gradient(v, 1e-3)
+    r = 0.3 * acc
+    with_acc = FreeSteadyCurve(v, v_rest=1e-3, acceleration=acc)
+    assert np.max(np.abs(r - with_acc.fit(r, np.ones(len(v), bool)))) < 1e-6 * np.max(np.abs(r))
+    without = FreeSteadyCurve(v, v_rest=1e-3)
+    assert np.sqrt(np.mean((r - without.fit(r, np.ones(len(v), bool))) ** 2)) > 0.9 * np.sqrt(np.mean(r**2))
