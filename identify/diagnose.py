@@ -256,11 +256,8 @@ def inertia_from_force(f: np.ndarray, v: np.ndarray, dt: float, L: int, v_rest: 
     that follows the acceleration moves them apart), else None; its standard error by the
     jackknife over ten blocks of time. A force logged once a sample from a controller whose
     proportional term moves within the sample reads I low by about kp·dt/2."""
-    curve = FreeSteadyCurve(v, v_rest)
+    hats = FreeSteadyCurve(v, v_rest).dense()
     rows = np.arange(len(v))
-    hats = np.zeros((len(v), curve.k))
-    np.add.at(hats, (rows, curve.i0), curve.w0)
-    np.add.at(hats, (rows, curve.i1), curve.w1)
 
     def solve(n_avg, mask):
         # MA(f) = I·(mean acceleration) + MA(S(v)): the steady curve averaged like the force
@@ -490,19 +487,27 @@ class FreeSteadyCurve:
         Ginv = np.linalg.inv(G)
         return Ginv @ b, Ginv
 
-    def curve(self, c: np.ndarray) -> np.ndarray:
-        return c[self.i0] * self.w0 + c[self.i1] * self.w1
+    def dense(self) -> np.ndarray:
+        """The hat functions as an n × k matrix (for a regression that filters them)."""
+        hats = np.zeros((self.n, self.k))
+        rows = np.arange(self.n)
+        np.add.at(hats, (rows, self.i0), self.w0)
+        np.add.at(hats, (rows, self.i1), self.w1)
+        return hats
+
+    def evaluate(self, c: np.ndarray, extra: list, idx=slice(None)) -> np.ndarray:
+        """The correction with coefficients ``c`` (hats, then ``extra`` columns) at ``idx``."""
+        out = c[self.i0[idx]] * self.w0[idx] + c[self.i1[idx]] * self.w1[idx]
+        for j, col in enumerate(extra):
+            out = out + c[self.k + j] * col[idx]
+        return out
 
     def fit(self, r: np.ndarray, mask: np.ndarray, model: np.ndarray | None = None) -> np.ndarray:
         """The correction over every sample fitted to ``r`` on ``mask``. With ``model`` (the
         model's friction), one more column: a level of its own for the friction at rest, the
         transition curve's, which need not share S(v)'s level g."""
         extra = self._extra(model)
-        c, _ = self.solve(r, mask, extra)
-        out = self.curve(c)
-        for j, col in enumerate(extra):
-            out = out + c[self.k + j] * col
-        return out
+        return self.evaluate(self.solve(r, mask, extra)[0], extra)
 
     def _extra(self, model) -> list:
         extra = [] if model is None else [np.where(self.rest, model, 0.0)]
@@ -512,12 +517,7 @@ class FreeSteadyCurve:
         """``r`` minus the correction fitted to it on ``mask`` (with the level at rest),
         evaluated at the samples ``idx`` only (what a least-squares step works on)."""
         extra = self._extra(model)
-        c, _ = self.solve(r, mask, extra)
-        i0, i1 = self.i0[idx], self.i1[idx]
-        out = r[idx] - (c[i0] * self.w0[idx] + c[i1] * self.w1[idx])
-        for j, col in enumerate(extra):
-            out -= c[self.k + j] * col[idx]
-        return out
+        return r[idx] - self.evaluate(self.solve(r, mask, extra)[0], extra, idx)
 
 
 class Engine:
