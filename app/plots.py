@@ -459,6 +459,14 @@ def diagnosis_signal_figure(d) -> go.Figure:
     fig.add_trace(_scatter(t, b, mode="lines", name="model as given", line=dict(color=COLORS[1], width=1)))
     fig.add_trace(_scatter(t, a, mode="lines", name="final model" + (f" (+ {', '.join(d.effects)})" if d.effects else ""),
                            line=dict(color=COLORS[0], width=1)))
+    compared = getattr(d, "compared", None)
+    if compared is not None and not compared.all() and compared.any():
+        # the start the diagnosis leaves out: the memory there is the machine's history before the log
+        t1 = float(d.time[int(np.argmax(compared))])
+        fig.layout["shapes"] = [dict(type="rect", xref="x", yref="paper", x0=float(d.time[0]), x1=t1, y0=0, y1=1,
+                                     fillcolor="#dddddd", opacity=0.5, line=dict(width=0), layer="below")]
+        fig.layout["annotations"] = [dict(x=t1, y=1, xref="x", yref="paper", text="compared from here",
+                                          showarrow=False, xanchor="left", yanchor="bottom", font=dict(size=10))]
     return _layout(fig, f"Measured and predicted {what}", "time (s)", f"{what} ({unit})")
 
 

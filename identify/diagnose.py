@@ -92,6 +92,8 @@ class Comparison:
     params: FrictionParams | None = None  # the model the comparison was set up for
     average: int = 1  # friction from an applied force: predictions averaged over this many samples too
     acceleration: np.ndarray | None = None  # friction from an applied force: the mean acceleration used
+    scored: np.ndarray | None = None  # samples compared (None: all); see ``initial_memory``
+    memory_offset: np.ndarray | None = None  # 1 where the memory still holds the log's unknown start, else 0
 
     def filtered(self, friction: np.ndarray) -> np.ndarray:
         """A predicted friction seen as the measurement sees it (the same moving average)."""
@@ -415,8 +417,9 @@ class FreeSteadyCurve:
     schedule ordered in time would make look like a drift."""
 
     def __init__(self, velocity: np.ndarray, v_rest: float, ratio: float = 2.0,
-                 acceleration: np.ndarray | None = None):
+                 acceleration: np.ndarray | None = None, memory_offset: np.ndarray | None = None):
         n = len(velocity)
+        self.memory_offset = memory_offset  # see ``initial_memory``
         # friction taken from an applied force: the inertia is free as well (a term I·ā, linear
         # in I), so an inertia held by the fit, or off, is not a residual an effect could take
         self.acceleration = acceleration
@@ -511,6 +514,7 @@ class FreeSteadyCurve:
 
     def _extra(self, model) -> list:
         extra = [] if model is None else [np.where(self.rest, model, 0.0)]
+        extra += [] if self.memory_offset is None else [self.memory_offset]
         return extra + ([] if self.acceleration is None else [self.acceleration])
 
     def residual_at(self, r: np.ndarray, idx: np.ndarray, mask: np.ndarray, model: np.ndarray) -> np.ndarray:
@@ -518,6 +522,14 @@ class FreeSteadyCurve:
         evaluated at the samples ``idx`` only (what a least-squares step works on)."""
         extra = self._extra(model)
         return r[idx] - self.evaluate(self.solve(r, mask, extra)[0], extra, idx)
+
+
+def memory_constant(r: np.ndarray, mask: np.ndarray, offset: np.ndarray | None) -> np.ndarray:
+    """The constant of ``initial_memory`` fitted to the residual ``r`` on ``mask``, over every sample."""
+    if offset is None:
+        return np.zeros_like(r)
+    on = mask & (offset > 0)
+    return (float(np.mean(r[on])) if on.any() else 0.0) * offset
 
 
 class Engine:
@@ -529,9 +541,12 @@ class Engine:
     def __init__(self, params: FrictionParams, cmp_: Comparison, free_steady: bool = True):
         self.p = params.replace(effects=())
         self.c = cmp_
-        self.free = FreeSteadyCurve(cmp_.velocity, cmp_.v_rest, acceleration=cmp_.acceleration) if free_steady else None
+        self.free = FreeSteadyCurve(cmp_.velocity, cmp_.v_rest, acceleration=cmp_.acceleration,
+                                    memory_offset=cmp_.memory_offset) if free_steady else None
+        self.memory_offset = cmp_.memory_offset
         self._thin_masks = {}
         self.ctx = cmp_.context()
+        self.scored = np.ones(len(cmp_.time), bool) if cmp_.scored is None else cmp_.scored
         self._cache_key = None
         self._cache = None
         self.sims = 0
@@ -553,14 +568,19 @@ class Engine:
 
     def nuisance(self, r: np.ndarray, mask: np.ndarray, model: np.ndarray) -> np.ndarray:
         """The alternative's free steady curve (and level at rest) fitted to the residual
-        ``r`` of the prediction ``model`` on ``mask``."""
-        return np.zeros_like(r) if self.free is None else self.free.fit(r, mask, model)
+        ``r`` of the prediction ``model`` on ``mask``; without it, the memory's constant only."""
+        if self.free is not None:
+            return self.free.fit(r, mask, model)
+        return memory_constant(r, mask, self.memory_offset)
 
     def residual_at(self, r: np.ndarray, idx: np.ndarray, model: np.ndarray) -> np.ndarray:
         """The residual ``r`` beside the free steady curve fitted on the samples ``idx`` (a
         least-squares step's thinned set: ~20 coefficients need no more), at those samples."""
         if self.free is None:
-            return r[idx]
+            if self.memory_offset is None:
+                return r[idx]
+            off = self.memory_offset[idx]
+            return r[idx] - memory_constant(r[idx], np.ones(len(idx), bool), off)
         key = self._thin_masks.get(id(idx))
         if key is None or key[0] is not idx:
             m = np.zeros(len(r), dtype=bool)
@@ -872,6 +892,9 @@ class Evidence:
     correction: np.ndarray = field(repr=False, default=None)  # prediction − alternative's prediction
     fit: FitResult = field(repr=False, default=None)
     not_where_it_shows: str | None = None  # the regime where it had to help and did not
+    where: str | None = None  # the regime where its physics shows
+    gain_where: float | None = None  # pooled held-out gain there
+    folds_where: str | None = None  # folds improved / informative there
 
     @property
     def folds_improved(self) -> int:
@@ -895,7 +918,8 @@ class Evidence:
                 "rms_after": self.rms_in, "reduction": float(1 - self.rms_in / base_rms) if base_rms else 0.0,
                 "heldout_gain": self.heldout_gain, "folds_improved": self.folds_improved,
                 "folds_informative": self.folds_informative, "delta_bic": self.delta_bic, "passes": self.passes(s),
-                "not_where_it_shows": self.not_where_it_shows,
+                "not_where_it_shows": self.not_where_it_shows, "where": self.where, "gain_where": self.gain_where,
+                "folds_where": self.folds_where,
                 "significant": False, "refitted": True}
 
 
@@ -912,7 +936,7 @@ def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list,
     sse = np.zeros(len(masks))
     preds = []
     for i, held in enumerate(masks):
-        fr = _fit(engine, terms, u_full, ~held, fit_k0=False, k0=k0,
+        fr = _fit(engine, terms, u_full, ~held & engine.scored, fit_k0=False, k0=k0,
                   max_nfev=25 if engine.c.space == "friction" else 5)
         sse[i] = engine.score((meas - fr.pred)[held])
         preds.append(fr.pred)
@@ -942,6 +966,7 @@ class Diagnosis:
     model_after: np.ndarray = field(repr=False, default=None)
     step_predictions: list = field(repr=False, default_factory=list)  # the model alone, step by step
     scored_predictions: list = field(repr=False, default_factory=list)  # with the free steady curve
+    compared: np.ndarray = field(repr=False, default=None)  # the samples compared (``initial_memory``)
     explaining: dict = field(repr=False, default_factory=dict)
 
     # the first named effect, for callers that show one
@@ -999,9 +1024,12 @@ class Diagnosis:
                  f"folds and ≥ {100 * self.settings.min_gain:.0f} % pooled):")
         for c in self.candidates:
             mark = "*" if c["significant"] else ("+" if c["passes"] else " ")
-            why = f"  — does not help in {c['not_where_it_shows']}" if c.get("not_where_it_shows") else ""
-            L.append(f" {mark} {c['name']:20s} held-out RMS −{100 * c['heldout_gain']:6.1f} %  folds "
-                     f"{c['folds_improved']}/{c['folds_informative']}  in-sample −{100 * c['reduction']:5.1f} %  "
+            why = ""
+            if c.get("where"):
+                why = (f"  in {c['where']}: {-100 * c['gain_where']:+.1f} %, folds {c['folds_where']}"
+                       + (" — not enough" if c.get("not_where_it_shows") else ""))
+            L.append(f" {mark} {c['name']:20s} held-out RMS {-100 * c['heldout_gain']:+6.1f} %  folds "
+                     f"{c['folds_improved']}/{c['folds_informative']}  in-sample {-100 * c['reduction']:+5.1f} %  "
                      f"ΔBIC {c['delta_bic']:10.1f}{why}")
         return "\n".join(L)
 
@@ -1067,6 +1095,62 @@ def regime_masks(cmp_: Comparison) -> dict:
     return m
 
 
+MEMORY_UNKNOWN_MAX = 0.5  # the most of a recording whose start may be left out
+
+
+@dataclass(frozen=True)
+class InitialMemory:
+    """How the start of a recording is compared (see ``initial_memory``)."""
+
+    scored: np.ndarray  # samples compared
+    offset: np.ndarray | None  # 1 on the samples whose memory holds an unknown constant, else 0
+    t_first: float  # time of the first sample compared
+    t_known: float  # time from which the memory is the model's (nan: never within the record)
+
+
+def initial_memory(cmp_: Comparison) -> InitialMemory:
+    """The hysteresis memory at the start of a recording (the extrema of section III-B's
+    stacks, the current F_b) is the machine's history before the log, which the data do not
+    show: the model starts from F_h = 0 with only the outer loop, the machine from wherever
+    it was (from a virgin contact, its first curve is not the model's F_d either). So:
+    - until the first significant reversal (the first curve), nothing is compared;
+    - from there until the first gross sliding resets both memories to the outer loop, every
+      curve starts from a reversal point that inherits the first curve's difference: the
+      model and the machine differ by a constant there, which the comparison leaves free;
+    - the stroke that leads into that first gross sliding is left out: on it the curve
+      passes back over the first curve's extremum and the two memories merge;
+    - a recording that slides before it reverses is compared from its first gross sliding.
+    If that would leave out more than half the recording, everything is compared as the
+    model starts (and the caller says so)."""
+    n = len(cmp_.time)
+    everything = InitialMemory(np.ones(n, bool), None, float(cmp_.time[0]), float("nan"))
+    gs = gross_sliding(cmp_)
+    i_reset = int(np.argmax(gs)) if gs.any() else n
+    rev = significant_reversals(cmp_.path, cmp_.min_excursion)
+    i_rev = int(np.argmax(rev >= 1)) if rev[-1] >= 1 else n
+    if i_reset == 0:
+        return InitialMemory(np.ones(n, bool), None, float(cmp_.time[0]), float(cmp_.time[0]))
+    first = min(i_rev, i_reset)
+    if first > MEMORY_UNKNOWN_MAX * n:
+        return everything
+    scored = np.zeros(n, bool)
+    scored[first:] = True
+    offset = None
+    if i_rev < i_reset < n:
+        # the start of the stroke that slides: the last sample moving the other way, + 1
+        v = cmp_.velocity[:i_reset]
+        other = np.flatnonzero(v * np.sign(cmp_.velocity[i_reset]) < -cmp_.v_rest)
+        i_stroke = int(other[-1]) + 1 if len(other) else i_rev
+        scored[i_stroke:i_reset] = False
+        offset = np.zeros(n)
+        offset[i_rev:i_stroke] = 1.0
+    elif i_rev < i_reset:
+        offset = np.zeros(n)
+        offset[i_rev:] = 1.0
+    t_known = float(cmp_.time[i_reset]) if i_reset < n else float("nan")
+    return InitialMemory(scored, offset, float(cmp_.time[first]), t_known)
+
+
 def _rms(a) -> float:
     return float(np.sqrt(np.mean(a**2))) if len(a) else float("nan")
 
@@ -1115,14 +1199,32 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # ones stay on the steep start of the transition curve and hardly load the contact
     cmp_.min_excursion = max(cmp_.min_excursion, 0.25 * cmp_.z_presliding)
     cmp_.params = params
-    engine = Engine(base_params, cmp_, s.free_steady)
     meas = cmp_.measured
     n = len(meas)
     allm = np.ones(n, bool)
+    if cmp_.space == "friction":
+        mem = initial_memory(cmp_)
+        allm = mem.scored
+        cmp_.memory_offset = mem.offset
+        if not allm.all():
+            cmp_.notes.append(f"compared from {mem.t_first:.4g} s on ({int(allm.sum())} of {n} samples): the first "
+                              f"curve starts from the machine's history before the log, which the data do not show")
+        if mem.offset is not None:
+            until = "its end" if math.isnan(mem.t_known) else f"{mem.t_known:.4g} s"
+            cmp_.notes.append(f"from {mem.t_first:.4g} s to {until} (the first gross sliding) the hysteresis memory still "
+                              f"holds that history: a constant of its own is left free there, and the stroke into "
+                              f"that sliding, where the two memories merge, is left out")
+        elif allm.all() and math.isnan(mem.t_known):
+            cmp_.notes.append("the recording reverses late: the model's memory at its start (F_h = 0, the outer loop "
+                              "only) is assumed for every sample")
+    cmp_.scored = allm
+    engine = Engine(base_params, cmp_, s.free_steady)
     # the model as given, its own effects included
     prior0 = [dict(e) for e in params.effects]
     pred_given = engine.predict(1.0, 1.0, prior0)
-    rms0 = _rms(meas - pred_given)
+    # the model as given, beside the constant of the memory's unknown start (``initial_memory``)
+    pred_given_c = pred_given + memory_constant(meas - pred_given, allm, cmp_.memory_offset)
+    rms0 = _rms((meas - pred_given_c)[allm])
     say(0.05, "refitting the level and presliding stiffness (the alternative)")
     prior_terms = []
     prior_u = np.zeros(0)
@@ -1135,7 +1237,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     base_params = refit_transition(engine, base_params, prior_terms, prior_u, allm)
     null = _fit(engine, prior_terms, np.concatenate([[0.0, 0.0], prior_u]), allm, fit_k0=True, k0=1.0)
     k0 = null.k0
-    masks = fold_masks(n, s.folds, s.blocks_per_fold, cmp_.windows)
+    masks = [m & allm for m in fold_masks(n, s.folds, s.blocks_per_fold, cmp_.windows)]
     # the transitions: within twice the presliding range of a reversal (at rest or moving),
     # after the first significant reversal: before it the model runs on its virgin curve, a
     # property of the hysteresis model itself, not of a softening contact
@@ -1152,9 +1254,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     regimes_m = regime_masks(cmp_)
     r0 = meas - pred_given
     steps = [{"label": "model as given", "name": None, "params": None, "rms": rms0,
-              "rms_free": _rms(r0 - engine.nuisance(r0, allm, pred_given))},
-             {"label": "", "name": None, "params": None, "rms": _rms(meas - null.model), "rms_free": _rms(meas - null.pred)}]
-    step_preds = [pred_given]
+              "rms_free": _rms((r0 - engine.nuisance(r0, allm, pred_given))[allm])},
+             {"label": "", "name": None, "params": None, "rms": _rms((meas - null.model)[allm]),
+              "rms_free": _rms((meas - null.pred)[allm])}]
+    step_preds = [pred_given_c]
     scored = [pred_given + engine.nuisance(r0, allm, pred_given), null.pred]
     named = []
     confounded = []
@@ -1186,21 +1289,23 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             informative = np.array([np.sum((preds[i] - null_preds[i])[m] ** 2) > INFORMATIVE * max(null_sse[i], 1e-300)
                                     for i, m in enumerate(masks)])
             where = must_show.get(name)
-            failed_where = None
+            failed_where = where_name = gain_there = folds_there = None
             if where is not None:
+                where_name = "the transitions" if EFFECTS[name].acts_on == "stiffness" else "steady sliding"
                 sp = np.array([engine.score((meas - preds[i])[m & where]) for i, m in enumerate(masks)])
                 npre = np.array([engine.score((meas - null_preds[i])[m & where]) for i, m in enumerate(masks)])
                 inf_p = np.array([np.sum((preds[i] - null_preds[i])[m & where] ** 2) > INFORMATIVE * max(npre[i], 1e-300)
                                   for i, m in enumerate(masks)])
                 gain_there = 1.0 - math.sqrt(np.sum(sp) / max(np.sum(npre), 1e-300))
+                folds_there = f"{int(np.sum((sp < npre) & inf_p))}/{int(inf_p.sum())}"
                 if not (inf_p.sum() >= 2 and np.sum((sp < npre) & inf_p) > inf_p.sum() / 2 and gain_there >= s.min_gain):
-                    failed_where = "the transitions" if EFFECTS[name].acts_on == "stiffness" else "steady sliding"
+                    failed_where = where_name
             n_eff = _effective_n(meas - fr.pred)
             dbic = n_eff * math.log(max(fr.rss, 1e-300) / max(rss_null, 1e-300)) + len(term.free) * math.log(n_eff)
-            evid.append(Evidence(name, fr.entries[-1]["params"], _rms(meas - fr.pred), sse, null_sse, informative, dbic,
-                                 fr.pred - cur.pred, fr, failed_where))
+            evid.append(Evidence(name, fr.entries[-1]["params"], _rms((meas - fr.pred)[allm]), sse, null_sse, informative, dbic,
+                                 fr.pred - cur.pred, fr, failed_where, where_name, gain_there, folds_there))
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
-        base_rms = _rms(meas - cur.pred)
+        base_rms = _rms((meas - cur.pred)[allm])
         cands_out = [e.as_dict(s, base_rms) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
         winner = None
         blocked = set()
@@ -1242,7 +1347,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         cur = refit
         cur_u = refit.u[1:]
         steps.append({"label": f"+ {winner.name}", "name": winner.name, "params": dict(refit.entries[-1]["params"]),
-                      "rms": _rms(meas - refit.model), "rms_free": _rms(meas - refit.pred),
+                      "rms": _rms((meas - refit.model)[allm]), "rms_free": _rms((meas - refit.pred)[allm]),
                       "heldout_gain": winner.heldout_gain,
                       "folds": f"{winner.folds_improved}/{winner.folds_informative}"})
         scored.append(refit.pred)
@@ -1251,16 +1356,17 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     written = written_fits(engine, params.replace(effects=()), fits, k0)
     null, final = written[0], written[-1]
     for st, wf in zip(steps[1:], written):
-        st["rms"] = _rms(meas - wf.model)
+        st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant
         if wf.entries:
             st["params"] = dict(wf.entries[-1]["params"])
-        step_preds.append(wf.model)
+        step_preds.append(wf.pred)
     steps[1]["label"] = f"alternative: level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
     regimes = {}
     for k, m in regimes_m.items():
+        m = m & allm
         if m.any():
-            regimes[k] = {"n": int(m.sum()), "rms_before": _rms((meas - pred_given)[m]),
-                          "rms_base_refit": _rms((meas - null.model)[m]), "rms_after": _rms((meas - final.model)[m]),
+            regimes[k] = {"n": int(m.sum()), "rms_before": _rms((meas - pred_given_c)[m]),
+                          "rms_base_refit": _rms((meas - null.pred)[m]), "rms_after": _rms((meas - final.pred)[m]),
                           "noise": cmp_.noise}
     new_params = params  # nothing named: the model stays as it was
     if named:
@@ -1279,10 +1385,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         explaining["load"] = ("normal load", cmp_.load)
     say(1.0, "done")
     return Diagnosis(effects=named, steps=steps, confounded=confounded, candidates=cands_out, rms_before=rms0,
-                     rms_after=_rms(meas - final.model), rms_base_refit=_rms(meas - null.model), regimes=regimes,
+                     rms_after=_rms((meas - final.pred)[allm]), rms_base_refit=_rms((meas - null.pred)[allm]), regimes=regimes,
                      space=cmp_.space, noise=cmp_.noise, notes=cmp_.notes, params_before=params,
-                     params_after=new_params, settings=s, time=cmp_.time, measured=meas, model_before=pred_given,
-                     model_after=final.model, step_predictions=step_preds, scored_predictions=scored, explaining=explaining)
+                     params_after=new_params, settings=s, time=cmp_.time, measured=meas, model_before=pred_given_c,
+                     model_after=final.pred, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining)
 
 
 def written_fits(engine: Engine, base: FrictionParams, fits: list, k0: float) -> list:
@@ -1291,7 +1397,7 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list, k0: float) ->
     steady curve of the alternative helps decide, it is not part of the model."""
     engine.free = None
     engine.set_base(base)
-    return [_fit(engine, terms, np.concatenate([[u[0], math.log(k0)], u[1:]]), np.ones(len(engine.c.measured), bool),
+    return [_fit(engine, terms, np.concatenate([[u[0], math.log(k0)], u[1:]]), engine.scored,
                  fit_k0=True, k0=1.0) for terms, u in fits]
 
 

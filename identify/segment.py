@@ -75,6 +75,9 @@ def noise_sd(noise) -> float:
     return noise.step / np.sqrt(12.0) if isinstance(noise, Quantized) else noise.sigma
 
 
+MIN_PLATEAU_SHARE = 0.5  # a normal-load plateau holding less of the recording is not where to fit
+
+
 @dataclass
 class Thresholds:
     """Every threshold of the segmentation, derived from the recording (SI units)."""
@@ -271,8 +274,17 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
     th.override(overrides)
     if rec.normal_load is not None:
         usable = np.abs(rec.normal_load - N0) <= th.load_tol
-        notes.append(f"normal load: plateau {N0:.4g} N; {int((~usable).sum())} samples off the plateau "
-                     f"(|N - N0| > {th.load_tol:.3g} N) left out")
+        if usable.mean() >= MIN_PLATEAU_SHARE:
+            notes.append(f"normal load: plateau {N0:.4g} N; {int((~usable).sum())} samples off the plateau "
+                         f"(|N - N0| > {th.load_tol:.3g} N) left out")
+        else:
+            # a load that varies through the session (a schedule, a drifting contact): keeping
+            # only its plateau would leave too little to fit; the base model then averages over
+            # the loads, and `diagnose` tells whether the friction follows them
+            notes.append(f"normal load: only {100 * usable.mean():.0f} % of the samples within {th.load_tol:.3g} N of "
+                         f"its plateau {N0:.4g} N: every sample is used, S(v) and the transition curve average over "
+                         f"the loads (run diagnose to see whether friction follows the load)")
+            usable = np.ones(n, dtype=bool)
     flipped = False
     friction = rec.friction
     if friction is not None:
