@@ -50,6 +50,7 @@ from ..model import FrictionParams, TransitionCurve, simulate_displacement
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, significant_reversals
 from .data import DataError, Recording
+from .segment import local_slope
 
 
 INFORMATIVE = 0.01  # a held-out fold counts if the candidate moves its SSE by this fraction
@@ -94,6 +95,22 @@ class Comparison:
     acceleration: np.ndarray | None = None  # friction from an applied force: the mean acceleration used
     scored: np.ndarray | None = None  # samples compared (None: all); see ``initial_memory``
     memory_offset: np.ndarray | None = None  # 1 where the memory still holds the log's unknown start, else 0
+    raw: np.ndarray | None = None  # the logged signal the noise floor comes from (friction, or applied force)
+    inertial_noise: float = 0.0  # friction from an applied force: the sd the inertial term I·Δv/T adds
+    input_noise: np.ndarray | None = None  # the model's friction noise from the position it is driven by
+
+    def noise_on(self, mask: np.ndarray) -> float:
+        """The noise floor from the samples of ``mask`` alone (a recording's noise need not be
+        the same in every regime: a force sensor in presliding and in fast sliding, or parts
+        logged by different sensors), by the same rule as ``noise``."""
+        if self.raw is None:
+            return self.noise
+        both = mask[1:] & mask[:-1]
+        if both.sum() < 20:
+            return float("nan")
+        sd = _mad_sd(np.diff(self.raw)[both]) / math.sqrt(2.0)
+        carried = float(np.mean(self.input_noise[mask] ** 2)) if self.input_noise is not None else 0.0
+        return math.sqrt(sd**2 / self.average + self.inertial_noise**2 + carried)
 
     def filtered(self, friction: np.ndarray) -> np.ndarray:
         """A predicted friction seen as the measurement sees it (the same moving average)."""
@@ -128,8 +145,23 @@ def position_noise(x: np.ndarray) -> tuple[float, float]:
         # a lattice: most increments are multiples of q
         if np.median(np.abs(nz / q - np.round(nz / q))) > 0.05:
             q = 0.0
-    white = _mad_sd(np.diff(x, 2)) / math.sqrt(6.0)
+    white = _blockwise_sd(np.diff(x, 2)) / math.sqrt(6.0)
     return max(q / math.sqrt(12.0), white), q
+
+
+NOISE_BLOCKS = 20  # blocks a noise estimate is taken over
+NOISE_QUANTILE = 75  # … and the percentile of the blocks' estimates kept
+
+
+def _blockwise_sd(d: np.ndarray) -> float:
+    """A robust sd of ``d`` that a quiet part of the record cannot pull down: the 75th
+    percentile of the MAD estimates of 20 contiguous blocks (a prescribed motion logged
+    exactly beside a sensor's noisy part would otherwise halve the noise, and the
+    thresholds built on it would let the noise through as reversals)."""
+    nb = min(NOISE_BLOCKS, len(d) // 200)
+    if nb < 2:
+        return _mad_sd(d)
+    return float(np.percentile([_mad_sd(b) for b in np.array_split(d, nb)], NOISE_QUANTILE))
 
 
 def smoothing_window(x: np.ndarray, dt: float, sd: float) -> int:
@@ -164,6 +196,53 @@ def play(x: np.ndarray, h: float) -> np.ndarray:
     return out
 
 
+def smoothed_path(x: np.ndarray, window: int, h: float) -> np.ndarray:
+    """The path the model is driven along: the position smoothed by a quadratic Savitzky–Golay
+    window, then wiggles below 2h removed by the play operator."""
+    return play(savgol_filter(x, window, 2, mode="interp"), h)
+
+
+def savgol_noise_gain(window: int) -> float:
+    """The sd of white noise after the quadratic Savitzky–Golay smoothing of ``window``
+    samples (the central point), per unit sd: √(3(3w² − 7) / (4w(w² − 4)))."""
+    w = float(window)
+    return math.sqrt(3.0 * (3.0 * w * w - 7.0) / (4.0 * w * (w * w - 4.0)))
+
+
+def input_noise(friction: np.ndarray, path: np.ndarray, sd_path: float) -> np.ndarray:
+    """The sd, sample by sample, that the model's friction carries from the measured position
+    it is driven by, linearised: the local slope dF/dx of the model along the path times the
+    noise left in the smoothed path (in presliding a few nm move the friction along the steep
+    start of F_d; in sliding the slope is S(v)'s, ~0; where the path rests, the play operator
+    holds it against wiggles). A lower bound: an error a reversal stores in the hysteresis
+    memory lasts until the loop closes, which this does not count."""
+    dF = np.abs(np.diff(friction, prepend=friction[0]))
+    dx = np.abs(np.diff(path, prepend=path[0]))
+    # a step of the path shorter than the noise does not resolve a slope (the friction also
+    # moves with the velocity and time there): the noise cannot move F more than the step did
+    return np.where(dx > 0, dF * sd_path / np.maximum(dx, sd_path), 0.0)
+
+
+def _with_input_noise(cmp_: Comparison, friction: np.ndarray) -> Comparison:
+    d = input_noise(friction, cmp_.path, cmp_.position_noise * savgol_noise_gain(cmp_.window))
+    if cmp_.average > 1:  # the moving average of eq. (8) over L samples: variance / L
+        d = np.sqrt(np.maximum(uniform_filter1d(d**2, cmp_.average, mode="nearest"), 0.0) / cmp_.average)
+    cmp_.input_noise = d
+    return cmp_
+
+
+def settle_noise_floor(cmp_: Comparison, mask: np.ndarray) -> None:
+    """The noise floor of what is compared on ``mask``: the log's, and what the position noise
+    carries through the model's slope (``input_noise``)."""
+    if cmp_.input_noise is None:
+        return
+    logged = cmp_.noise
+    carried = math.sqrt(float(np.mean(cmp_.input_noise[mask] ** 2)))
+    cmp_.noise = math.sqrt(logged**2 + carried**2)
+    cmp_.notes.append(f"noise floor {cmp_.noise:.3g}: the log's {logged:.3g} and at least {carried:.3g} that the "
+                      f"position noise carries through the model's slope dF/dx (per regime below)")
+
+
 def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction") -> Comparison:
     """Where to compare: in friction when the recording has a friction column or an applied
     force (friction from eq. (8), averaged), in position (``space="position"``) only for an
@@ -178,8 +257,10 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     sdx, q = position_noise(x)
     w = smoothing_window(x, dt, sdx)
     h = 2.0 * max(sdx, q / 2.0)
-    path = play(savgol_filter(x, w, 2, mode="interp"), h)
-    vel = savgol_filter(x, w, 2, deriv=1, delta=dt, mode="interp")
+    path = smoothed_path(x, w, h)
+    # the sampling may change within a record (parts logged at different rates, gaps): the
+    # slope is taken against the actual times, as the fit does
+    vel = local_slope(t, x, w, uniform=bool(np.ptp(np.diff(t)) <= 0.01 * dt))
     v_noise = sdx * math.sqrt(12.0) / (w**1.5 * dt)
     v_rest = 3.0 * max(v_noise, (q / (w * dt)) if q else 0.0)
     notes = [f"position noise {sdx:.3g} (step {q:.3g}); path smoothed over {w} samples and wiggles below {2 * h:.3g} removed; |v| < {v_rest:.3g} counts as presliding"]
@@ -188,15 +269,15 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
         meas = np.asarray(rec.friction, dtype=np.float64)
         noise = _mad_sd(np.diff(meas)) / math.sqrt(2.0)
         cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, rec.force, noise, sdx, w, min_exc, v_rest,
-                          notes=notes)
+                          notes=notes, raw=meas)
         # a reaction-sign log (friction positive while the position decreases): flip it
         F0 = simulate_displacement(params, t, path).friction_force
         if np.dot(F0 - F0.mean(), meas - meas.mean()) < 0:
             cmp_.measured = -meas
             cmp_.flipped = True
             notes.append("friction logged as a reaction (opposite to the model's sign): flipped")
-        notes.append(f"compared in friction; noise floor {noise:.3g} (from sample-to-sample differences)")
-        return cmp_
+        notes.append(f"compared in friction; noise of the log {noise:.3g} (from sample-to-sample differences)")
+        return _with_input_noise(cmp_, F0)
     if rec.force is None:
         raise DataError(f"{rec.source}: diagnosis needs a friction column, or an applied force column")
     f = np.asarray(rec.force, dtype=np.float64)
@@ -212,20 +293,33 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
     inertia = params.inertia
     L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t))
-    est = inertia_from_force(f, vel, dt, L, v_rest)
-    if est is not None:
-        if est.stderr < 0.25 * est.value and abs(est.value - inertia) > 3 * est.stderr:
+    model_friction = simulate_displacement(params, t, path).friction_force
+    est = inertia_from_force(f, vel, t, L, v_rest)
+    if est is not None and est.stderr < 0.25 * est.value and abs(est.value - inertia) > 3 * est.stderr:
+        # the regression is biased where the friction itself lags the motion in step with the
+        # acceleration (clean velocity ramps rather than a controller's hunting): the
+        # recording's value is used only if the model as given then agrees with the data better
+        L2 = averaging_length(est.value, f_sd, v_noise, dt, w, len(t))
+        gaps = [_rms(friction_from_force(f, vel, i, t, n) - uniform_filter1d(model_friction, n, mode="nearest"))
+                for i, n in ((inertia, L), (est.value, L2))]
+        if gaps[1] < gaps[0]:
             notes.append(f"inertia: the recording says {est.value:.4g} ± {est.stderr:.2g} against the parameter "
-                         f"file's {inertia:.4g}; the recording's value is used to take friction from the applied force")
-            inertia = est.value
-            L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t))
-    meas = friction_from_force(f, vel, inertia, dt, L)
-    noise = math.sqrt(f_sd**2 / L + 2.0 * (inertia * v_noise / ((L - 1) * dt)) ** 2)
+                         f"file's {inertia:.4g}, and the model agrees better with it (RMS {gaps[1]:.3g} against "
+                         f"{gaps[0]:.3g}); the recording's value is used to take friction from the applied force")
+            inertia, L = est.value, L2
+        else:
+            notes.append(f"inertia: the recording says {est.value:.4g} ± {est.stderr:.2g} against the parameter "
+                         f"file's {inertia:.4g}, but the model agrees better with the file's (RMS {gaps[0]:.3g} "
+                         f"against {gaps[1]:.3g}): the file's is kept")
+    meas = friction_from_force(f, vel, inertia, t, L)
+    inertial_noise = math.sqrt(2.0) * inertia * v_noise / ((L - 1) * dt)
+    noise = math.sqrt(f_sd**2 / L + inertial_noise**2)
     notes.append(f"compared in friction, taken from the applied force by eq. (8) averaged over {L} samples "
                  f"({L * dt:.3g} s): mean force − I·Δv/T (the inertial term in integral form, the position "
-                 f"never differentiated twice); the model's friction averaged the same way; noise floor {noise:.3g}")
-    return Comparison("friction", t, meas, path, vel, rec.normal_load, f, noise, sdx, w, min_exc, v_rest, notes=notes,
-                      average=L, acceleration=mean_acceleration(vel, dt, L))
+                 f"never differentiated twice); the model's friction averaged the same way; noise of the log {noise:.3g}")
+    cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, f, noise, sdx, w, min_exc, v_rest, notes=notes,
+                      average=L, acceleration=mean_acceleration(vel, t, L), raw=f, inertial_noise=inertial_noise)
+    return _with_input_noise(cmp_, model_friction)
 
 
 def averaging_length(inertia: float, f_sd: float, v_sd: float, dt: float, window: int, n: int) -> int:
@@ -247,7 +341,7 @@ class InertiaEstimate:
     stderr: float
 
 
-def inertia_from_force(f: np.ndarray, v: np.ndarray, dt: float, L: int, v_rest: float) -> InertiaEstimate | None:
+def inertia_from_force(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float) -> InertiaEstimate | None:
     """The inertia I of eq. (8) from the recording alone: while sliding steadily the friction
     is a function of the velocity, S(v), so the averaged applied force is I·(mean
     acceleration) plus the averaged steady curve; it is regressed on the mean acceleration
@@ -260,17 +354,18 @@ def inertia_from_force(f: np.ndarray, v: np.ndarray, dt: float, L: int, v_rest: 
     proportional term moves within the sample reads I low by about kp·dt/2."""
     hats = FreeSteadyCurve(v, v_rest).dense()
     rows = np.arange(len(v))
+    dt = float(np.median(np.diff(t)))
 
     def solve(n_avg, mask):
         # MA(f) = I·(mean acceleration) + MA(S(v)): the steady curve averaged like the force
-        X = np.column_stack([uniform_filter1d(hats, n_avg, axis=0, mode="nearest"), mean_acceleration(v, dt, n_avg)])
+        X = np.column_stack([uniform_filter1d(hats, n_avg, axis=0, mode="nearest"), mean_acceleration(v, t, n_avg)])
         coef, *_ = np.linalg.lstsq(X[mask], uniform_filter1d(f, n_avg, mode="nearest")[mask], rcond=None)
         return float(coef[-1])
 
     est = {}
     for n_avg in (8 * L + 1, 32 * L + 1):
-        acc = mean_acceleration(v, dt, n_avg)
-        steady = (np.abs(v) > v_rest) & (np.abs(acc) * n_avg * dt < 0.1 * np.abs(v))
+        acc = mean_acceleration(v, t, n_avg)
+        steady = (np.abs(v) > v_rest) & (np.abs(acc) * n_avg * dt < 0.1 * np.abs(v))  # dt: the median interval
         if steady.sum() < 50 * n_avg or np.std(acc[steady]) == 0:
             return None
         est[n_avg] = (solve(n_avg, steady), steady)
@@ -283,21 +378,24 @@ def inertia_from_force(f: np.ndarray, v: np.ndarray, dt: float, L: int, v_rest: 
     return InertiaEstimate(I2, math.sqrt((JACKKNIFE_BLOCKS - 1) / JACKKNIFE_BLOCKS * float(np.sum((jk - jk.mean()) ** 2))))
 
 
-def mean_acceleration(v: np.ndarray, dt: float, L: int) -> np.ndarray:
+def mean_acceleration(v: np.ndarray, t: np.ndarray, L: int) -> np.ndarray:
     """The mean acceleration over the L = 2h + 1 samples centred on each one,
-    (v[i + h] − v[i − h])/(2h·dt): centred, so a force logged at the sampling instants, or as
-    the command held over the interval before or after, is off by at most half a sample.
+    (v[i + h] − v[i − h])/(t[i + h] − t[i − h]): centred, so a force logged at the sampling
+    instants, or as the command held over the interval before or after, is off by at most
+    half a sample; over the actual times, so a record whose rate changes is not misread.
     (Near the ends the window is clipped.)"""
+    n = len(v)
     h = L // 2
-    vp = np.concatenate([v[h:], np.full(h, v[-1])])
-    vm = np.concatenate([np.full(h, v[0]), v[:len(v) - h]])
-    return (vp - vm) / (2 * h * dt)
+    i = np.arange(n)
+    hi, lo = np.minimum(i + h, n - 1), np.maximum(i - h, 0)
+    span = t[hi] - t[lo]
+    return np.divide(v[hi] - v[lo], span, out=np.zeros(n), where=span > 0)
 
 
-def friction_from_force(f: np.ndarray, v: np.ndarray, inertia: float, dt: float, L: int) -> np.ndarray:
+def friction_from_force(f: np.ndarray, v: np.ndarray, inertia: float, t: np.ndarray, L: int) -> np.ndarray:
     """Eq. (8), I·ẍ = f − F, averaged over L samples: F̄ = f̄ − I·(mean acceleration), so the
     acceleration is never taken from a twice differentiated position."""
-    return uniform_filter1d(f, L, mode="nearest") - inertia * mean_acceleration(v, dt, L)
+    return uniform_filter1d(f, L, mode="nearest") - inertia * mean_acceleration(v, t, L)
 
 
 def _position_comparison(rec, params, t, x, f, vel, sdx, w, min_exc, v_rest, v_noise, path, notes) -> Comparison:
@@ -1016,9 +1114,12 @@ class Diagnosis:
                      f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
             if s.get("params"):
                 L.append("      " + ", ".join(f"{k} = {v:.4g}" for k, v in s["params"].items()))
-        L.append("Per regime (RMS before → after the refit → final):")
+        L.append("Per regime (RMS before → after the refit → final; the noise floor of that regime's samples):")
         for k, r in self.regimes.items():
-            L.append(f"  {k:22s} n={r['n']:7d}  {r['rms_before']:.4g} → {r['rms_base_refit']:.4g} → {r['rms_after']:.4g}")
+            nr = r["noise"]
+            tail = f"   noise {nr:.3g} ({r['rms_after'] / nr:.1f} ×)" if nr and math.isfinite(nr) else ""
+            L.append(f"  {k:22s} n={r['n']:7d}  {r['rms_before']:.4g} → {r['rms_base_refit']:.4g} → {r['rms_after']:.4g}"
+                     + tail)
         L.append(f"Candidates, last round (blocked CV: {self.settings.folds} folds of "
                  f"{self.settings.blocks_per_fold} contiguous blocks; named if better held out in most informative "
                  f"folds and ≥ {100 * self.settings.min_gain:.0f} % pooled):")
@@ -1035,18 +1136,14 @@ class Diagnosis:
 
 
 def median_stroke(cmp_: Comparison) -> float:
-    """Median travel between two reversals of the motion (runs of one velocity sign)."""
-    v, x = cmp_.velocity, cmp_.path
-    moving = np.abs(v) > cmp_.v_rest
-    sgn = np.sign(v[moving])
-    if len(sgn) < 2:
-        return 0.0
-    xm = x[moving]
-    edges = np.flatnonzero(np.diff(sgn) != 0) + 1
-    starts = np.r_[0, edges]
-    ends = np.r_[edges - 1, len(xm) - 1]
-    travel = np.abs(xm[ends] - xm[starts])
-    travel = travel[travel > 0]
+    """Median travel between two significant reversals of the path (back-travel over
+    ``min_excursion``), the ends of the record counting as reversals: a velocity flickering
+    about the rest threshold in a dwell makes no stroke."""
+    x = cmp_.path
+    count = significant_reversals(x, cmp_.min_excursion)
+    turns = np.r_[0, np.flatnonzero(np.diff(count) > 0) + 1, len(x) - 1]
+    travel = np.abs(np.diff(x[turns]))
+    travel = travel[travel > cmp_.min_excursion]
     return float(np.median(travel)) if len(travel) else 0.0
 
 
@@ -1218,6 +1315,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             cmp_.notes.append("the recording reverses late: the model's memory at its start (F_h = 0, the outer loop "
                               "only) is assumed for every sample")
     cmp_.scored = allm
+    settle_noise_floor(cmp_, allm)
     engine = Engine(base_params, cmp_, s.free_steady)
     # the model as given, its own effects included
     prior0 = [dict(e) for e in params.effects]
@@ -1367,7 +1465,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         if m.any():
             regimes[k] = {"n": int(m.sum()), "rms_before": _rms((meas - pred_given_c)[m]),
                           "rms_base_refit": _rms((meas - null.pred)[m]), "rms_after": _rms((meas - final.pred)[m]),
-                          "noise": cmp_.noise}
+                          "noise": cmp_.noise_on(m)}
     new_params = params  # nothing named: the model stays as it was
     if named:
         # S(v) and the transition curve are rescaled: their old uncertainties no longer apply

@@ -171,7 +171,7 @@ def _chunks(t, gap):
     return [(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:]) if b - a >= 2]
 
 
-def _slope(t, x, w, uniform):
+def local_slope(t, x, w, uniform):
     """Local least-squares slope over ``w`` samples: Savitzky–Golay (order 2) on uniform
     sampling, a running linear regression (cumulative sums) on irregular sampling."""
     n = len(x)
@@ -249,7 +249,7 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
     th.window = int(w)
     v_pos = np.zeros(n)
     for a, b in chunks:
-        v_pos[a:b] = _slope(t[a:b], x[a:b], w, uniform)
+        v_pos[a:b] = local_slope(t[a:b], x[a:b], w, uniform)
     sd_pos = float(_slope_noise(th.x_noise, w, dt))
     velocity, th.velocity_source, th.v_noise = v_pos, f"position (Savitzky–Golay, {w} samples)", sd_pos
     if rec.velocity is not None:

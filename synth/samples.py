@@ -17,9 +17,14 @@ HERE = Path(__file__).resolve().parent.parent / "sample_data"
 SPEEDS = np.array([0.001, 0.002, 0.004, 0.008, 0.015, 0.03, 0.06, 0.12, 0.25, 0.5, 1.0])
 
 
-def constant_velocity(params=None, seed: int = 1, torque_noise: float = 0.5, speeds=SPEEDS, rate: float = 500.0):
+def constant_velocity(params=None, seed: int = 1, torque_noise: float = 0.5, speeds=SPEEDS, rate: float = 500.0,
+                      t_acc: float = 0.0):
     """Constant-velocity tests, positive then negative: each level long enough to settle
-    (≥ 6e-3 rad or 1 s), torque with Gaussian noise ``torque_noise`` N·m, sampled at ``rate`` (500 Hz)."""
+    (≥ 6e-3 rad or 1 s), torque with Gaussian noise ``torque_noise`` N·m, sampled at ``rate`` (500 Hz).
+
+    ``t_acc = 0``: the velocity steps between levels and the torque is the friction (a torque
+    sensor at the contact). ``t_acc > 0``: the velocity ramps between levels over ``t_acc``
+    seconds and the torque is the applied one, I·ẍ + F (a motor torque)."""
     p = params or default_params()
     rng = np.random.default_rng(seed)
     vel = np.concatenate([speeds, -speeds])
@@ -28,14 +33,18 @@ def constant_velocity(params=None, seed: int = 1, torque_noise: float = 0.5, spe
     t = np.arange(0.0, durations.sum(), dt)
     edges = np.concatenate([[0], np.cumsum(durations)])
     v = vel[np.clip(np.searchsorted(edges, t, side="right") - 1, 0, len(vel) - 1)]
+    if t_acc > 0:
+        n_acc = int(round(t_acc / dt))
+        v = np.convolve(np.concatenate([np.zeros(n_acc), v]), np.ones(n_acc) / n_acc, mode="full")[n_acc:n_acc + len(t)]
     x = np.concatenate([[0.0], np.cumsum(v[1:] * dt)])
     r = simulate_displacement(p, t, x)
     k = int(round(1.0 / (rate * dt)))
     sel = slice(0, None, k)
+    torque = r.applied_force if t_acc > 0 else r.friction_force
     return pd.DataFrame({
         "time": t[sel],
         "position": x[sel],
-        "torque": r.friction_force[sel] + rng.normal(0.0, torque_noise, len(t[sel])),
+        "torque": torque[sel] + rng.normal(0.0, torque_noise, len(t[sel])),
     })
 
 
@@ -71,10 +80,11 @@ def presliding_encoder(params=None, seed: int = 3, step: float = 1.6e-5, jitter:
 
 
 def mixed_session(params=None, seed: int = 4):
-    """One test session: presliding ramps, then constant-velocity runs in both directions,
+    """One test session: presliding ramps, then constant-velocity runs in both directions
+    (velocity ramped between levels over 50 ms), the applied torque logged throughout,
     headers with units (angle in mrad, time in s)."""
     a = presliding_proximity(params, seed)
-    b = constant_velocity(params, seed + 100)
+    b = constant_velocity(params, seed + 100, t_acc=0.05)
     b = b.assign(time=b["time"] + a["time"].iloc[-1] + 1e-3,
                  position=b["position"] + a["position"].iloc[-1])
     b = b.rename(columns={"torque": "applied_torque"})

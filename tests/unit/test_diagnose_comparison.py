@@ -26,7 +26,7 @@ def test_friction_from_force_removes_the_inertial_term_of_a_known_motion():
     F = 4.0 + 1.5 * np.sin(0.9 * t) + 0.5 * np.sign(np.sin(0.3 * t))
     f = -I * A * w * w * np.sin(w * t) + F
     L = 21
-    got = friction_from_force(f, v, I, dt, L)
+    got = friction_from_force(f, v, I, t, L)
     want = uniform_filter1d(F, L, mode="nearest")  # the friction seen through the same average
     inner = slice(L, len(t) - L)
     assert I * A * w * w > 80.0  # the inertial force dwarfs the friction
@@ -151,7 +151,7 @@ def test_inertia_from_force_recovers_the_mass_of_a_controlled_plant():
         fs.append(u)
     v = np.array(vs)
     f = np.array(fs)
-    got = inertia_from_force(f, v, dt, 5, 1e-3)
+    got = inertia_from_force(f, v, np.arange(len(v)) * dt, 5, 1e-3)
     assert got is not None
     I_hat, se = got.value, got.stderr
     # the force is logged once a sample, at the end of it, while the proportional term moves
@@ -261,3 +261,62 @@ def test_initial_memory_leaves_the_first_curve_out_and_a_constant_free_until_the
     # … and after the first gross sliding nothing is left
     after = mem.scored & ~loops
     assert after.sum() > len(x) // 3 and np.max(np.abs(left[after])) < 0.01 * Fs
+
+
+def test_position_noise_is_that_of_the_noisy_part_of_a_record_logged_partly_exactly():
+    # a proximity sensor's noise (σ = 5e-8) over the first 60 % of a slow motion, then a
+    # prescribed motion logged exactly: the thresholds must be built on 5e-8, not on a median
+    # that the exact part pulls down
+    from leuven_friction.identify.diagnose import position_noise
+
+    rng = np.random.default_rng(5)
+    n = 40_000
+    x = 1e-4 * np.sin(np.linspace(0, 20, n))
+    x[: int(0.6 * n)] += rng.normal(0.0, 5e-8, int(0.6 * n))
+    sd, q = position_noise(x)
+    assert q == 0.0
+    assert abs(sd - 5e-8) < 0.1 * 5e-8
+
+
+def test_savgol_noise_gain_matches_the_filter_on_white_noise():
+    from leuven_friction.identify.diagnose import savgol_noise_gain
+    from scipy.signal import savgol_filter
+
+    e = np.random.default_rng(6).normal(0.0, 1.0, 400_000)
+    for w in (5, 9, 21):
+        got = np.std(savgol_filter(e, w, 2)[w:-w])
+        assert abs(got - savgol_noise_gain(w)) < 0.01, (w, got, savgol_noise_gain(w))
+
+
+def test_noise_floor_is_taken_regime_by_regime():
+    # a friction log twice as noisy in its second half: each half's floor is its own
+    rng = np.random.default_rng(7)
+    n = 20_000
+    t = np.arange(n) * 1e-3
+    meas = np.sin(t) + np.where(t < t[n // 2], rng.normal(0, 0.01, n), rng.normal(0, 0.02, n))
+    c = Comparison("friction", t, meas, t.copy(), np.ones(n), None, None, 0.01, 0.0, 5, 1e-5, 1e-3, raw=meas)
+    first = t < t[n // 2]
+    assert abs(c.noise_on(first) - 0.01) < 0.001 and abs(c.noise_on(~first) - 0.02) < 0.002
+    # the noise the position carries through the model adds to a regime's floor
+    c.input_noise = np.where(first, 0.03, 0.0)
+    assert abs(c.noise_on(first) - math.hypot(0.01, 0.03)) < 0.002
+
+
+def test_median_stroke_counts_strokes_not_a_velocity_flickering_in_dwells():
+    from leuven_friction.identify.diagnose import median_stroke
+
+    # strokes of 0.2 back and forth with dwells in which the position wiggles by 1e-6 about
+    # its rest (a noisy sensor, well under min_excursion = 1e-5)
+    rng = np.random.default_rng(8)
+    legs = []
+    pos = 0.0
+    for k in range(12):
+        end = 0.2 if k % 2 == 0 else 0.0
+        legs.append(np.linspace(pos, end, 400))
+        legs.append(end + rng.uniform(-1e-6, 1e-6, 300))
+        pos = end
+    x = np.concatenate(legs)
+    t = np.arange(len(x)) * 1e-3
+    v = np.gradient(x, t)
+    c = _cmp(t, x, v, z_pres=0.01)
+    assert abs(median_stroke(c) - 0.2) < 0.01
