@@ -320,3 +320,28 @@ def test_median_stroke_counts_strokes_not_a_velocity_flickering_in_dwells():
     v = np.gradient(x, t)
     c = _cmp(t, x, v, z_pres=0.01)
     assert abs(median_stroke(c) - 0.2) < 0.01
+
+
+def test_friction_from_force_reads_a_record_whose_sampling_rate_changes():
+    # the same analytic motion as above, logged at 200 Hz for 3 s and then at 500 Hz: the mean
+    # acceleration must come from the actual times (a median interval would misread the
+    # second part by a factor 2.5)
+    I, A, w = 2.5, 0.3, 2 * np.pi * 1.7
+    t = np.concatenate([np.arange(0, 3, 5e-3), np.arange(3, 6, 2e-3)])
+    v = A * w * np.cos(w * t)
+    F = 4.0 + 1.5 * np.sin(0.9 * t)
+    f = -I * A * w * w * np.sin(w * t) + F
+    L = 5
+    got = friction_from_force(f, v, I, t, L)
+    want = uniform_filter1d(F, L, mode="nearest")
+    err = np.abs(got - want)[L:-L]
+    seam = np.abs(t[L:-L] - 3.0) < 3 * 5e-3
+    # the centred difference of the velocity over the window against the window's mean
+    # acceleration: relative (ω·T)²/24 with T ≤ 4·5 ms, under 0.2 % of the inertial force;
+    # at the seam the window's samples are unevenly spread in time (its force mean is not
+    # its time mean): under 2 % there
+    assert np.max(err[~seam]) < 2e-3 * I * A * w * w
+    assert np.max(err[seam]) < 2e-2 * I * A * w * w
+    # read with the median interval, the 500 Hz part would be off by most of the inertial force
+    wrong = uniform_filter1d(f, L, mode="nearest") - I * (np.roll(v, -2) - np.roll(v, 2)) / (4 * 5e-3)
+    assert np.max(np.abs(wrong - want)[L:-L][t[L:-L] > 3.1]) > 0.5 * I * A * w * w
