@@ -9,7 +9,10 @@ out-of-sample evidence, add it, refit, look again.
    along the recorded path, smoothed to the scale of its noise or encoder step (quantisation
    is a measurement, not motion), and averaged like the measurement. ``space="position"``
    keeps an output-error comparison in position (the plant simulated from the applied force
-   in short windows). The noise floor is estimated from the recording and printed.
+   in short windows). The hysteresis memory at the start of the record is not assumed
+   (``initial_memory``: the first curve is left out, a constant left free until the first
+   gross sliding). The noise floor — the log's, and what the position noise carries through
+   the model — is estimated from the recording and printed, regime by regime.
 2. **The alternative** every effect must beat: the current model with its level g,
    presliding stiffness κ0, n, σ1 and S(v) levels refitted, beside a free steady curve
    (``FreeSteadyCurve``: any correction to S(v), a level of its own at rest, and for friction
