@@ -215,15 +215,20 @@ def savgol_noise_gain(window: int) -> float:
 def input_noise(friction: np.ndarray, path: np.ndarray, sd_path: float) -> np.ndarray:
     """The sd, sample by sample, that the model's friction carries from the measured position
     it is driven by, linearised: the local slope dF/dx of the model along the path times the
-    noise left in the smoothed path (in presliding a few nm move the friction along the steep
-    start of F_d; in sliding the slope is S(v)'s, ~0; where the path rests, the play operator
-    holds it against wiggles). A lower bound: an error a reversal stores in the hysteresis
-    memory lasts until the loop closes, which this does not count."""
+    noise left in the path (in presliding a few nm move the friction along the steep start of
+    F_d; in sliding the slope is S(v)'s, ~0). Where the path rests (the play operator holding
+    it, or an encoder between two steps) the true position is still anywhere within the noise
+    of it, on the curve it stopped on: the last slope is carried over. A lower bound: an error
+    a reversal stores in the hysteresis memory lasts until the loop closes, which this does
+    not count."""
     dF = np.abs(np.diff(friction, prepend=friction[0]))
     dx = np.abs(np.diff(path, prepend=path[0]))
+    moved = dx > 0
     # a step of the path shorter than the noise does not resolve a slope (the friction also
     # moves with the velocity and time there): the noise cannot move F more than the step did
-    return np.where(dx > 0, dF * sd_path / np.maximum(dx, sd_path), 0.0)
+    slope = np.where(moved, dF / np.maximum(dx, sd_path), 0.0)
+    last = np.maximum.accumulate(np.where(moved, np.arange(len(dx)), 0))
+    return slope[last] * sd_path
 
 
 def _with_input_noise(cmp_: Comparison, friction: np.ndarray) -> Comparison:
@@ -1289,7 +1294,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     base_params = params.replace(effects=())
     cmp_.z_presliding = presliding_range(params)
     stroke = median_stroke(cmp_)
-    if stroke > 0 and cmp_.z_presliding > stroke / 8:
+    # a transition curve identified on presliding data (uncertainties given) is trusted: the
+    # strokes of a presliding experiment are shorter than its range by design
+    identified = any(k.startswith("transition_curve") for k in params.uncertainty)
+    if stroke > 0 and cmp_.z_presliding > stroke / 8 and not identified:
         # a transition curve held from another machine (a fit without presliding data keeps
         # its starting file's) can claim a presliding range as long as the strokes
         cmp_.notes.append(f"the model's presliding range {cmp_.z_presliding:.3g} is over an eighth of the median "
