@@ -105,7 +105,9 @@ class Comparison:
     def noise_on(self, mask: np.ndarray) -> float:
         """The noise floor from the samples of ``mask`` alone (a recording's noise need not be
         the same in every regime: a force sensor in presliding and in fast sliding, or parts
-        logged by different sensors), by the same rule as ``noise``."""
+        logged by different sensors): the log's, from sample-to-sample differences of ``raw``
+        through the averaging of eq. (8) and its inertial term, and what the position noise
+        carries through the model (``input_noise``, once known)."""
         if self.raw is None:
             return self.noise
         both = mask[1:] & mask[:-1]
@@ -114,6 +116,10 @@ class Comparison:
         sd = _mad_sd(np.diff(self.raw)[both]) / math.sqrt(2.0)
         carried = float(np.mean(self.input_noise[mask] ** 2)) if self.input_noise is not None else 0.0
         return math.sqrt(sd**2 / self.average + self.inertial_noise**2 + carried)
+
+    def log_noise(self) -> float:
+        """``noise_on`` over every sample, before the carried part is added."""
+        return self.noise_on(np.ones(len(self.time), bool))
 
     def filtered(self, friction: np.ndarray) -> np.ndarray:
         """A predicted friction seen as the measurement sees it (the same moving average)."""
@@ -275,9 +281,9 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     min_exc = 4.0 * max(sdx, q)
     if rec.friction is not None:
         meas = np.asarray(rec.friction, dtype=np.float64)
-        noise = _mad_sd(np.diff(meas)) / math.sqrt(2.0)
-        cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, rec.force, noise, sdx, w, min_exc, v_rest,
+        cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, rec.force, 0.0, sdx, w, min_exc, v_rest,
                           notes=notes, raw=meas)
+        cmp_.noise = noise = cmp_.log_noise()
         # a reaction-sign log (friction positive while the position decreases): flip it
         F0 = simulate_displacement(params, t, path).friction_force
         if np.dot(F0 - F0.mean(), meas - meas.mean()) < 0:
@@ -304,9 +310,9 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     model_friction = simulate_displacement(params, t, path).friction_force
     est = inertia_from_force(f, vel, t, L, v_rest)
     if est is not None and est.stderr < 0.25 * est.value and abs(est.value - inertia) > 3 * est.stderr:
-        # the regression is biased where the friction itself lags the motion in step with the
-        # acceleration (clean velocity ramps rather than a controller's hunting): the
-        # recording's value is used only if the model as given then agrees with the data better
+        # a model-free regression can be misled (anything in the friction that follows the
+        # acceleration enters I): the recording's value is used only if the model as given then
+        # agrees with the data better
         L2 = averaging_length(est.value, f_sd, v_noise, dt, w, len(t))
         gaps = [_rms(friction_from_force(f, vel, i, t, n) - uniform_filter1d(model_friction, n, mode="nearest"))
                 for i, n in ((inertia, L), (est.value, L2))]
@@ -320,13 +326,14 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
                          f"file's {inertia:.4g}, but the model agrees better with the file's (RMS {gaps[0]:.3g} "
                          f"against {gaps[1]:.3g}): the file's is kept")
     meas = friction_from_force(f, vel, inertia, t, L)
-    inertial_noise = math.sqrt(2.0) * inertia * v_noise / ((L - 1) * dt)
-    noise = math.sqrt(f_sd**2 / L + inertial_noise**2)
+    cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, f, 0.0, sdx, w, min_exc, v_rest, notes=notes,
+                      average=L, acceleration=mean_acceleration(vel, t, L), raw=f,
+                      inertial_noise=math.sqrt(2.0) * inertia * v_noise / ((L - 1) * dt))
+    cmp_.noise = cmp_.log_noise()
     notes.append(f"compared in friction, taken from the applied force by eq. (8) averaged over {L} samples "
                  f"({L * dt:.3g} s): mean force − I·Δv/T (the inertial term in integral form, the position "
-                 f"never differentiated twice); the model's friction averaged the same way; noise of the log {noise:.3g}")
-    cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, f, noise, sdx, w, min_exc, v_rest, notes=notes,
-                      average=L, acceleration=mean_acceleration(vel, t, L), raw=f, inertial_noise=inertial_noise)
+                 f"never differentiated twice); the model's friction averaged the same way; noise of the log "
+                 f"{cmp_.noise:.3g}")
     return _with_input_noise(cmp_, model_friction)
 
 
@@ -649,7 +656,6 @@ class Engine:
         self.c = cmp_
         self.free = FreeSteadyCurve(cmp_.velocity, cmp_.v_rest, acceleration=cmp_.acceleration,
                                     memory_offset=cmp_.memory_offset) if free_steady else None
-        self.memory_offset = cmp_.memory_offset
         self._thin_masks = {}
         self.ctx = cmp_.context()
         self.scored = np.ones(len(cmp_.time), bool) if cmp_.scored is None else cmp_.scored
@@ -677,16 +683,15 @@ class Engine:
         ``r`` of the prediction ``model`` on ``mask``; without it, the memory's constant only."""
         if self.free is not None:
             return self.free.fit(r, mask, model)
-        return memory_constant(r, mask, self.memory_offset)
+        return memory_constant(r, mask, self.c.memory_offset)
 
     def residual_at(self, r: np.ndarray, idx: np.ndarray, model: np.ndarray) -> np.ndarray:
         """The residual ``r`` beside the free steady curve fitted on the samples ``idx`` (a
         least-squares step's thinned set: ~20 coefficients need no more), at those samples."""
         if self.free is None:
-            if self.memory_offset is None:
+            if self.c.memory_offset is None:
                 return r[idx]
-            off = self.memory_offset[idx]
-            return r[idx] - memory_constant(r[idx], np.ones(len(idx), bool), off)
+            return r[idx] - memory_constant(r[idx], np.ones(len(idx), bool), self.c.memory_offset[idx])
         key = self._thin_masks.get(id(idx))
         if key is None or key[0] is not idx:
             m = np.zeros(len(r), dtype=bool)
