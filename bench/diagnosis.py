@@ -38,7 +38,10 @@ def _diagnose_case(kind, seed, effects, base="oracle"):
             "confounded": [c["effects"] for c in d.confounded], "rms_steps": gap, "rms_free_steps": [s.get("rms_free") for s in d.steps], "noise": d.noise,
             "space": d.space, "samples": len(df), "seconds": el,
             "heldout_gains": [s.get("heldout_gain") for s in d.steps[2:]],
-            "best_rejected": max((c["heldout_gain"] for c in d.candidates if not c["significant"]), default=None)}
+            "best_rejected": max((c["heldout_gain"] for c in d.candidates if not c["significant"]), default=None),
+            "candidates": [{k: c.get(k) for k in ("name", "heldout_gain", "folds_improved", "folds_informative", "where",
+                                                  "gain_where", "folds_where", "delta_bic", "significant")}
+                           for c in d.candidates]}
 
 
 def confusion(rows) -> dict:

@@ -35,8 +35,9 @@ out-of-sample evidence, add it, refit, look again.
    as confounded — each one's evidence and the experiment that would separate them — and
    neither is named.
 6. **Several effects.** Name, add, refit all together, look again, until nothing passes; the
-   gap after every step is kept. The model written (``written_fits``) is the model as given
-   with g, κ0 and the named effects refitted to the recording alone.
+   gap after every step is kept. The model written (``written_fits``) is, at every step, the
+   model as given with n, σ1, the S(v) levels, g, κ0 and that step's effects refitted to the
+   recording alone, without the free steady curve.
 """
 
 from __future__ import annotations
@@ -805,15 +806,30 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
     return FitResult(g, kk, entries, pred, float(np.sum((meas - pred)[mask] ** 2)), sol.x, model)
 
 
+REFIT_BASE_U = 8  # refit_transition's vector: log g, log κ0, log n, log σ1, then Fs, Fc factors per side
+
+
+@dataclass(frozen=True)
+class TransitionRefit:
+    """What ``refit_transition`` found: the base with n, σ1 and S(v) updated, the level, the
+    stiffness, the terms' entries, and the solution vector (a warm start for the next)."""
+
+    params: FrictionParams
+    g: float
+    k0: float
+    entries: list
+    u: np.ndarray
+
+
 def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_u: np.ndarray,
-                     mask: np.ndarray) -> FrictionParams:
+                     mask: np.ndarray, start: np.ndarray | None = None) -> TransitionRefit:
     """Part of the alternative: the level g, the presliding stiffness κ0, the exponent n of
     eq. (5) (how sharply presliding turns into sliding), the micro-viscous σ1 of eq. (3) and
     the levels of S(v) (Fs, Fc per side, each within a factor 1.5), refitted together by output
-    error: what an effect must beat is the best the base model can do on its own. Returns
-    the parameters with n, σ1 and S(v) updated (g and κ0 are refitted again by the caller)."""
+    error: what an effect must beat is the best the base model can do on its own. ``start``:
+    a solution vector to start from (the bounds stay those of ``params``)."""
     if params.model != "leuven":
-        return params
+        return TransitionRefit(params, 1.0, 1.0, [], np.zeros(0))
     from ..model import Stribeck, StribeckSide
 
     meas = engine.c.measured
@@ -821,7 +837,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     sp, sn = params.stribeck.positive, params.stribeck.negative
     # S(v) levels per side, Fs and Fc as factors; vs, δ and σ2 held: a session whose speeds rise
     # with time would let them take up a drift in time
-    NS = 4
+    NS = REFIT_BASE_U - 4
 
     def side(s, f):
         return StribeckSide(Fs=s.Fs * f[0], Fc=s.Fc * f[1], vs=s.vs, delta=s.delta, sigma2=s.sigma2)
@@ -851,12 +867,13 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
                          [f[2] for t in terms for f in t.free]])
     hi = np.concatenate([[math.log(5), math.log(20), math.log(40.0 / n0), math.log(100)], np.full(NS, b),
                          [f[3] for t in terms for f in t.free]])
-    u0 = np.clip(np.concatenate([[0.0, 0.0, 0.0, 0.0], np.zeros(NS), prior_u]), lo + 1e-9, hi - 1e-9)
+    u0 = np.concatenate([[0.0, 0.0, 0.0, 0.0], np.zeros(NS), prior_u]) if start is None else np.asarray(start, float)
+    u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3,
                         max_nfev=40 if engine.c.space == "friction" else 15, **engine.loss())
-    _, _, p, _ = unpack(sol.x)
+    g, kk, p, entries = unpack(sol.x)
     engine.set_base(p)
-    return p
+    return TransitionRefit(p, g, kk, entries, sol.x)
 
 
 # ---------------------------------------------------------------- screening a candidate's shape
@@ -1348,7 +1365,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             tm = Term(tm.name, {k: e["params"][k] for k in tm.fixed}, tm.free)
             prior_terms.append(tm)
             prior_u = np.concatenate([prior_u, _entry_to_u(tm, e["params"])])
-    base_params = refit_transition(engine, base_params, prior_terms, prior_u, allm)
+    base_params = refit_transition(engine, base_params, prior_terms, prior_u, allm).params
     null = _fit(engine, prior_terms, np.concatenate([[0.0, 0.0], prior_u]), allm, fit_k0=True, k0=1.0)
     k0 = null.k0
     masks = [m & allm for m in fold_masks(n, s.folds, s.blocks_per_fold, cmp_.windows)]
@@ -1467,9 +1484,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         scored.append(refit.pred)
         fits.append((list(cur_terms), refit.u))
     say(0.95, "refitting the model that is written (without the free steady curve)")
-    written = written_fits(engine, params.replace(effects=()), fits, k0)
-    null, final = written[0], written[-1]
-    for st, wf in zip(steps[1:], written):
+    # the model written is refitted from the model as given, without the free steady curve: the
+    # alternative's own n, σ1 and S(v) leaned on that curve (its free inertia, its level at rest)
+    written = written_fits(engine, params.replace(effects=()), fits)
+    (null, _), (final, final_base) = written[0], written[-1]
+    for st, (wf, _) in zip(steps[1:], written):
         st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant
         if wf.entries:
             st["params"] = dict(wf.entries[-1]["params"])
@@ -1486,11 +1505,13 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     if named:
         # S(v) and the transition curve are rescaled: their old uncertainties no longer apply
         unc = {k: v for k, v in params.uncertainty.items()
-               if not (k.startswith("stribeck.") or k.startswith("transition_curve"))}
+               if not (k.startswith("stribeck.") or k.startswith("transition_curve") or k in ("n", "sigma1"))}
         prov = dict(params.provenance)
-        prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation); level ×{final.g:.4g} and "
-                             f"presliding stiffness ×{final.k0:.4g} refitted by output error in {cmp_.space}")
-        new_params = bake(params.replace(effects=()), final.g, final.k0).replace(
+        prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation); level ×{final.g:.4g}, "
+                             f"presliding stiffness ×{final.k0:.4g}, n {params.n:.3g} → {final_base.n:.3g}, "
+                             f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g} and the S(v) levels refitted by "
+                             f"output error in {cmp_.space}")
+        new_params = bake(final_base.replace(effects=()), final.g, final.k0).replace(
             effects=tuple(_clean_entry(e, cmp_) for e in final.entries), uncertainty=unc, provenance=prov)
     ctx = cmp_.context()
     explaining = {"time": ("time (s)", cmp_.time), "position": ("position", cmp_.path),
@@ -1505,14 +1526,27 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      model_after=final.pred, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining)
 
 
-def written_fits(engine: Engine, base: FrictionParams, fits: list, k0: float) -> list:
-    """The model that goes into the parameter file at every step: the base as given, its
-    level g, stiffness κ0 and the named effects refitted to the recording alone — the free
-    steady curve of the alternative helps decide, it is not part of the model."""
+def written_fits(engine: Engine, base: FrictionParams, fits: list) -> list:
+    """The model that goes into the parameter file at every step, refitted to the recording
+    alone (the free steady curve of the alternative helps decide, it is not part of the
+    model): from ``base``, n, σ1, the S(v) levels, the level g, stiffness κ0 and that step's
+    effects (``refit_transition``). Every step is refitted in full, so each gap is the best the
+    model does with those effects and the gain of a step is not held down by a base tuned
+    without its effect. A step starts where the one before ended, its new effect where the
+    decision's fit left it. Returns (FitResult, refitted base) per step."""
     engine.free = None
-    engine.set_base(base)
-    return [_fit(engine, terms, np.concatenate([[u[0], math.log(k0)], u[1:]]), engine.scored,
-                 fit_k0=True, k0=1.0) for terms, u in fits]
+    meas, mask = engine.c.measured, engine.scored
+    out, prev = [], None
+    for terms, u in fits:
+        # u: log g, then the terms' parameters (the decision's fit)
+        shared = np.r_[u[0], np.zeros(REFIT_BASE_U - 1)] if prev is None else prev[:REFIT_BASE_U]
+        start = np.concatenate([shared, u[1:]])
+        r = refit_transition(engine, base, terms, u[1:], mask, start=start)
+        model = engine.predict(r.g, r.k0, r.entries)
+        pred = model + engine.nuisance(meas - model, mask, model)
+        out.append((FitResult(r.g, r.k0, r.entries, pred, float(np.sum((meas - pred)[mask] ** 2)), r.u, model), r.params))
+        prev = r.u
+    return out
 
 
 def _clean_entry(e: dict, cmp_: Comparison) -> dict:
