@@ -822,7 +822,7 @@ class TransitionRefit:
 
 
 def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_u: np.ndarray,
-                     mask: np.ndarray, start: np.ndarray | None = None) -> TransitionRefit:
+                     mask: np.ndarray, start: np.ndarray | None = None, max_nfev: int = 40) -> TransitionRefit:
     """Part of the alternative: the level g, the presliding stiffness κ0, the exponent n of
     eq. (5) (how sharply presliding turns into sliding), the micro-viscous σ1 of eq. (3) and
     the levels of S(v) (Fs, Fc per side, each within a factor 1.5), refitted together by output
@@ -870,7 +870,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     u0 = np.concatenate([[0.0, 0.0, 0.0, 0.0], np.zeros(NS), prior_u]) if start is None else np.asarray(start, float)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3,
-                        max_nfev=40 if engine.c.space == "friction" else 15, **engine.loss())
+                        max_nfev=max_nfev if engine.c.space == "friction" else 15, **engine.loss())
     g, kk, p, entries = unpack(sol.x)
     engine.set_base(p)
     return TransitionRefit(p, g, kk, entries, sol.x)
@@ -1526,6 +1526,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      model_after=final.pred, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining)
 
 
+WRITTEN_NFEV = 20  # least-squares iterations per step of the model written
+
+
 def written_fits(engine: Engine, base: FrictionParams, fits: list) -> list:
     """The model that goes into the parameter file at every step, refitted to the recording
     alone (the free steady curve of the alternative helps decide, it is not part of the
@@ -1541,7 +1544,8 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list) -> list:
         # u: log g, then the terms' parameters (the decision's fit)
         shared = np.r_[u[0], np.zeros(REFIT_BASE_U - 1)] if prev is None else prev[:REFIT_BASE_U]
         start = np.concatenate([shared, u[1:]])
-        r = refit_transition(engine, base, terms, u[1:], mask, start=start)
+        # a refit of a model the decision has already fitted: fewer steps than the alternative's
+        r = refit_transition(engine, base, terms, u[1:], mask, start=start, max_nfev=WRITTEN_NFEV)
         model = engine.predict(r.g, r.k0, r.entries)
         pred = model + engine.nuisance(meas - model, mask, model)
         out.append((FitResult(r.g, r.k0, r.entries, pred, float(np.sum((meas - pred)[mask] ** 2)), r.u, model), r.params))
