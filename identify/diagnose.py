@@ -1494,6 +1494,13 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             st["params"] = dict(wf.entries[-1]["params"])
         step_preds.append(wf.pred)
     steps[1]["label"] = f"alternative: level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
+    if final_base is not params and params.model == "leuven":
+        levels = [getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
+                  for sd in ("positive", "negative") for k in ("Fs", "Fc")]
+        cmp_.notes.append(f"the model written (every step) refits, besides the level, the stiffness and the effects: "
+                          f"n {params.n:.3g} → {final_base.n:.3g}, σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, "
+                          f"the S(v) levels ×{min(levels):.3f} … ×{max(levels):.3f}"
+                          + ("" if named else " (nothing named: the parameter file is left as it was)"))
     regimes = {}
     for k, m in regimes_m.items():
         m = m & allm
