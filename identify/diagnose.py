@@ -801,9 +801,15 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4, max_nfev=max_nfev,
                         **engine.loss())
     g, kk, entries = unpack(sol.x)
-    model = engine.predict(g, kk, entries)
+    return fit_result(engine, g, kk, entries, sol.x, mask)
+
+
+def fit_result(engine: Engine, g: float, k0: float, entries: list, u: np.ndarray, mask: np.ndarray) -> FitResult:
+    """The prediction of a fitted (g, κ0, entries), with and without the engine's nuisance."""
+    meas = engine.c.measured
+    model = engine.predict(g, k0, entries)
     pred = model + engine.nuisance(meas - model, mask, model)
-    return FitResult(g, kk, entries, pred, float(np.sum((meas - pred)[mask] ** 2)), sol.x, model)
+    return FitResult(g, k0, entries, pred, float(np.sum((meas - pred)[mask] ** 2)), u, model)
 
 
 REFIT_BASE_U = 8  # refit_transition's vector: log g, log κ0, log n, log σ1, then Fs, Fc factors per side
@@ -1494,7 +1500,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             st["params"] = dict(wf.entries[-1]["params"])
         step_preds.append(wf.pred)
     steps[1]["label"] = f"alternative: level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
-    if final_base is not params and params.model == "leuven":
+    if params.model == "leuven":
         levels = [getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
                   for sd in ("positive", "negative") for k in ("Fs", "Fc")]
         cmp_.notes.append(f"the model written (every step) refits, besides the level, the stiffness and the effects: "
@@ -1545,7 +1551,12 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list) -> list:
     without its effect. A step starts where the one before ended, its new effect where the
     decision's fit left it. Returns (FitResult, refitted base) per step."""
     engine.free = None
-    meas, mask = engine.c.measured, engine.scored
+    mask = engine.scored
+    if base.model != "leuven":
+        # n, σ1 and the S(v) levels refitted are the Leuven model's: the level, stiffness and effects only
+        engine.set_base(base)
+        return [(_fit(engine, terms, np.concatenate([[u[0], 0.0], u[1:]]), mask, fit_k0=True, k0=1.0), base)
+                for terms, u in fits]
     out, prev = [], None
     for terms, u in fits:
         # u: log g, then the terms' parameters (the decision's fit)
@@ -1553,9 +1564,7 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list) -> list:
         start = np.concatenate([shared, u[1:]])
         # a refit of a model the decision has already fitted: fewer steps than the alternative's
         r = refit_transition(engine, base, terms, u[1:], mask, start=start, max_nfev=WRITTEN_NFEV)
-        model = engine.predict(r.g, r.k0, r.entries)
-        pred = model + engine.nuisance(meas - model, mask, model)
-        out.append((FitResult(r.g, r.k0, r.entries, pred, float(np.sum((meas - pred)[mask] ** 2)), r.u, model), r.params))
+        out.append((fit_result(engine, r.g, r.k0, r.entries, r.u, mask), r.params))
         prev = r.u
     return out
 
