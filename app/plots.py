@@ -503,7 +503,8 @@ def diagnosis_cv_figure(d) -> go.Figure:
                        name="held-out RMS gain (%)",
                        marker=dict(color=[COLORS[2] if c["significant"] else ("#e0a000" if c["passes"] else "#bbbbbb")
                                           for c in d.candidates]),
-                       text=[f"{c['folds_improved']}/{c['folds_informative']} folds" for c in d.candidates],
+                       text=[f"{c['folds_improved']}/{c['folds_informative']} folds" if c.get("cross_validated", True)
+                             else "in-sample: not cross-validated" for c in d.candidates],
                        textposition="auto"))
     fig.add_trace(_scatter([100 * d.settings.min_gain] * 2, [names[0], names[-1]] if names else [0, 0], mode="lines",
                            name="threshold", line=dict(color="#444444", dash="dash")))

@@ -40,7 +40,7 @@ def _diagnose_case(kind, seed, effects, base="oracle"):
             "heldout_gains": [s.get("heldout_gain") for s in d.steps[2:]],
             "best_rejected": max((c["heldout_gain"] for c in d.candidates if not c["significant"]), default=None),
             "candidates": [{k: c.get(k) for k in ("name", "heldout_gain", "folds_improved", "folds_informative", "where",
-                                                  "gain_where", "folds_where", "delta_bic", "significant")}
+                                                  "gain_where", "folds_where", "delta_bic", "significant", "cross_validated", "beside")}
                            for c in d.candidates]}
 
 

@@ -69,6 +69,7 @@ class Settings:
     clear_margin: float = 0.25  # the better of two alike candidates must gain this much more (relative)
     max_effects: int = 3
     free_steady: bool = True  # the alternative holds a free correction to S(v) (FreeSteadyCurve)
+    rate_nuisance: bool = True  # a stiffness effect is judged beside a stiffness varying with speed (rate_alternative)
     space: str = "friction"  # "position": a force-driven recording compared by output error in position
     candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
 
@@ -131,8 +132,10 @@ class Comparison:
         return "force" if self.space == "friction" else "position"
 
     def context(self) -> Context:
-        v = self.velocity
-        return Context(time=self.time, position=self.path, velocity=v, load=self.load,
+        # the velocity is the smoothed slope, not the path's backward difference that
+        # ``model.effects.context_of`` takes (the only effect reading it, rate_stiffness, would
+        # follow the steps a smoothed encoder path still makes)
+        return Context(time=self.time, position=self.path, velocity=self.velocity, load=self.load,
                        reversals=significant_reversals(self.path, self.min_excursion))
 
 
@@ -483,8 +486,14 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
         nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1])
         return Term(name, {"min_excursion": cmp_.min_excursion},
                     # n_c ≥ 3: a change complete within a couple of reversals is a constant
-                    # stiffness factor, which the alternative's κ0 already holds
-                    (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(3.0), math.log(max(10 * nrev, 10.0)))))
+                    # stiffness factor, which the alternative's κ0 already holds; n_c ≤ half the
+                    # reversals: a change still far from saturating at the session's end is a
+                    # trend in the reversal count, which a schedule confounds with time and speed
+                    (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(3.0), math.log(max(nrev / 2, 3.5)))))
+    if name == "rate_stiffness":
+        st = cmp_.params.stribeck
+        v_ref = min(abs(st.positive.vs), abs(st.negative.vs))
+        return Term(name, {"v_ref": v_ref, "v_floor": min(cmp_.v_rest, v_ref)}, (("c1", "lin", -2.0, 2.0), ("c2", "lin", -1.0, 1.0)))
     if name == "presliding_stiffness":
         return Term(name, {}, (("kappa", "log", math.log(0.05), math.log(20.0)),))
     raise KeyError(name)
@@ -953,7 +962,7 @@ def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, b
         return [("tau", math.log(v)) for v in T * np.geomspace(0.1, 3.0, 6)]
     if name == "cyclic_softening":
         nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1]) or 1.0
-        return [("n_c", math.log(max(v, 3.0))) for v in nrev * np.geomspace(0.05, 2.0, 4)]
+        return [("n_c", math.log(max(v, 3.0))) for v in nrev * np.geomspace(0.05, 0.5, 4)]
     if name == "position_ripple":
         lo = term.free[2][2]
         return [("wavelength", math.log(v)) for v in _ripple_wavelengths(cmp_, resid, base, lo)]
@@ -1019,9 +1028,9 @@ class Evidence:
     name: str
     params: dict
     rms_in: float  # in-sample RMS with the candidate
-    heldout_sse: np.ndarray  # per fold
-    null_sse: np.ndarray
-    informative: np.ndarray  # per fold: the candidate changes the held-out prediction
+    heldout_sse: np.ndarray | None  # per fold (None: not cross-validated, see PRESCREEN)
+    null_sse: np.ndarray | None
+    informative: np.ndarray | None  # per fold: the candidate changes the held-out prediction
     delta_bic: float
     correction: np.ndarray = field(repr=False, default=None)  # prediction − alternative's prediction
     fit: FitResult = field(repr=False, default=None)
@@ -1029,32 +1038,84 @@ class Evidence:
     where: str | None = None  # the regime where its physics shows
     gain_where: float | None = None  # pooled held-out gain there
     folds_where: str | None = None  # folds improved / informative there
+    beside: str | None = None  # what the alternative it beat held besides the named effects
+    k0_refitted: bool = False  # κ0 was refitted with it (its fit's u: log g, log κ0, ...)
+    rms_alt: float = 0.0  # in-sample RMS of the alternative it is judged against
+
+    @property
+    def cross_validated(self) -> bool:
+        return self.heldout_sse is not None
+
+    @property
+    def in_sample_gain(self) -> float:
+        return float(1 - self.rms_in / self.rms_alt) if self.rms_alt else 0.0
 
     @property
     def folds_improved(self) -> int:
-        return int(np.sum((self.heldout_sse < self.null_sse) & self.informative))
+        return int(np.sum((self.heldout_sse < self.null_sse) & self.informative)) if self.cross_validated else 0
 
     @property
     def folds_informative(self) -> int:
-        return int(np.sum(self.informative))
+        return int(np.sum(self.informative)) if self.cross_validated else 0
 
     @property
     def heldout_gain(self) -> float:
+        """Pooled held-out gain; for a candidate not cross-validated, its in-sample gain (an upper bound)."""
+        if not self.cross_validated:
+            return self.in_sample_gain
         return float(1.0 - math.sqrt(np.sum(self.heldout_sse) / max(np.sum(self.null_sse), 1e-300)))
 
     def passes(self, s: Settings) -> bool:
         k = self.folds_informative
-        return bool(k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain
+        return bool(self.cross_validated and k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain
                     and self.not_where_it_shows is None)
 
-    def as_dict(self, s: Settings, base_rms: float) -> dict:
+    def as_dict(self, s: Settings) -> dict:
         return {"name": self.name, "description": EFFECTS[self.name].description, "params": self.params,
-                "rms_after": self.rms_in, "reduction": float(1 - self.rms_in / base_rms) if base_rms else 0.0,
+                "rms_after": self.rms_in, "reduction": self.in_sample_gain, "cross_validated": self.cross_validated,
                 "heldout_gain": self.heldout_gain, "folds_improved": self.folds_improved,
                 "folds_informative": self.folds_informative, "delta_bic": self.delta_bic, "passes": self.passes(s),
                 "not_where_it_shows": self.not_where_it_shows, "where": self.where, "gain_where": self.gain_where,
-                "folds_where": self.folds_where,
+                "folds_where": self.folds_where, "beside": self.beside,
                 "significant": False, "refitted": True}
+
+
+@dataclass
+class Alternative:
+    """What a candidate must beat: the fit without it (terms and their vector u, without log g),
+    with its held-out SSE and predictions per fold once ``held_out`` has been asked for."""
+
+    fit: FitResult
+    terms: list
+    u: np.ndarray
+    beside: str | None = None  # what it holds besides the named effects
+    fit_k0: bool = False  # κ0 is refitted with every candidate (u then starts with log κ0)
+    sse: np.ndarray | None = None
+    preds: list | None = None
+
+    def held_out(self, engine: Engine, masks: list, k0: float) -> tuple:
+        """(SSE per fold, predictions per fold), cross-validated on first use only: when no
+        candidate comes near the threshold in-sample, the alternative is never cross-validated."""
+        if self.sse is None:
+            u = np.concatenate([[math.log(self.fit.g)], self.u])
+            self.sse, self.preds = cross_validate(engine, self.terms, u, masks, k0, fit_k0=self.fit_k0)
+        return self.sse, self.preds
+
+
+def rate_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, k0: float, mask: np.ndarray) -> Alternative:
+    """The alternative a stiffness effect is judged against: ``plain`` with a presliding
+    stiffness that varies smoothly with the sliding speed (``rate_stiffness``). A contact
+    whose transition depends on speed otherwise than eq. (5) says shows, to the model, a
+    stiffness that follows the speed of each stroke; where a session's speeds rise with the
+    number of reversals (a sweep in rising order), that would otherwise be credited to a
+    softening or hardening with the reversals. The presliding stiffness κ0 is refitted with it
+    and with every candidate judged against it: a softening starts stiffer than the average the
+    alternative's κ0 holds."""
+    term = _terms_for("rate_stiffness", cmp_)
+    terms = plain.terms + [term]
+    u0 = np.concatenate([[math.log(plain.fit.g), math.log(k0)], plain.u, np.zeros(len(term.free))])
+    fr = _fit(engine, terms, u0, mask, fit_k0=True, k0=k0)
+    return Alternative(fr, terms, fr.u[1:], "a stiffness varying with speed", fit_k0=True)
 
 
 def _effective_n(resid: np.ndarray) -> float:
@@ -1064,14 +1125,19 @@ def _effective_n(resid: np.ndarray) -> float:
     return len(r) * (1 - rho) / (1 + rho)
 
 
-def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list, k0: float) -> tuple:
+PRESCREEN = 0.5  # a candidate gaining less than this fraction of min_gain in-sample is not cross-validated
+CV_NFEV = 25  # least-squares steps of a fold's refit (it starts from the fit on every fold)
+CV_NFEV_STIFFNESS = 10  # … where κ0 and a stiffness varying with speed are refitted too (each step simulates)
+
+
+def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list, k0: float, fit_k0: bool = False) -> tuple:
     """Held-out SSE per fold, and the held-out predictions, refitting on the other folds."""
     meas = engine.c.measured
     sse = np.zeros(len(masks))
     preds = []
+    nfev = (CV_NFEV_STIFFNESS if fit_k0 else CV_NFEV) if engine.c.space == "friction" else 5
     for i, held in enumerate(masks):
-        fr = _fit(engine, terms, u_full, ~held & engine.scored, fit_k0=False, k0=k0,
-                  max_nfev=25 if engine.c.space == "friction" else 5)
+        fr = _fit(engine, terms, u_full, ~held & engine.scored, fit_k0=fit_k0, k0=k0, max_nfev=nfev)
         sse[i] = engine.score((meas - fr.pred)[held])
         preds.append(fr.pred)
     return sse, preds
@@ -1165,9 +1231,14 @@ class Diagnosis:
             if c.get("where"):
                 why = (f"  in {c['where']}: {-100 * c['gain_where']:+.1f} %, folds {c['folds_where']}"
                        + (" — not enough" if c.get("not_where_it_shows") else ""))
+            beside = f"  (beside {c['beside']})" if c.get("beside") else ""
+            if not c.get("cross_validated", True):
+                L.append(f" {mark} {c['name']:20s} in-sample {-100 * c['reduction']:+5.1f} %: under half the threshold, "
+                         f"not cross-validated  ΔBIC {c['delta_bic']:10.1f}{beside}")
+                continue
             L.append(f" {mark} {c['name']:20s} held-out RMS {-100 * c['heldout_gain']:+6.1f} %  folds "
                      f"{c['folds_improved']}/{c['folds_informative']}  in-sample {-100 * c['reduction']:+5.1f} %  "
-                     f"ΔBIC {c['delta_bic']:10.1f}{why}")
+                     f"ΔBIC {c['delta_bic']:10.1f}{why}{beside}")
         return "\n".join(L)
 
 
@@ -1407,20 +1478,35 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     names = [c for c in names if c not in {e["name"] for e in prior0}]
     for step in range(s.max_effects):
         say(0.1 + 0.8 * step / s.max_effects, f"step {step + 1}: cross-validating the alternative")
-        null_u = np.concatenate([[math.log(cur.g)], cur_u])
-        null_sse, null_preds = cross_validate(engine, cur_terms, null_u, masks, k0)
-        rss_null = cur.rss
         evid = []
         todo = [c for c in names if c not in named and c not in excluded]
+        plain = Alternative(cur, cur_terms, cur_u)
+        beside_rate = None
+        if (s.rate_nuisance and any(EFFECTS[c].acts_on == "stiffness" for c in todo)
+                and not any(t.name == "rate_stiffness" for t in cur_terms)):
+            say(0.1 + 0.8 * step / s.max_effects, f"step {step + 1}: the alternative with a stiffness varying with speed")
+            beside_rate = rate_alternative(engine, cmp_, plain, k0, allm)
         for j, name in enumerate(todo):
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
+            alt = beside_rate if (beside_rate is not None and EFFECTS[name].acts_on == "stiffness") else plain
+            rss_null = alt.fit.rss
             term = _terms_for(name, cmp_)
-            u0 = screen(engine, name, term, cur.entries, cur_u, cur, allm)
+            u0 = screen(engine, name, term, alt.fit.entries, alt.u, alt.fit, allm)
             if u0 is None:
                 continue
-            terms = cur_terms + [term]
-            fr = _fit(engine, terms, u0, allm, fit_k0=False, k0=k0)
-            _, preds = cross_validate(engine, terms, fr.u, masks, k0)
+            terms = alt.terms + [term]
+            fr = _fit(engine, terms, u0, allm, fit_k0=alt.fit_k0, k0=k0)
+            rms_c, rms_a = _rms((meas - fr.pred)[allm]), _rms((meas - alt.fit.pred)[allm])
+            n_eff = _effective_n(meas - fr.pred)
+            dbic = n_eff * math.log(max(fr.rss, 1e-300) / max(rss_null, 1e-300)) + len(term.free) * math.log(n_eff)
+            if rms_c > (1.0 - PRESCREEN * s.min_gain) * rms_a:
+                # held out, a candidate does worse than in-sample: one this far below the threshold
+                # on the data it was fitted to is not cross-validated
+                evid.append(Evidence(name, fr.entries[-1]["params"], rms_c, None, None, None, dbic, fr.pred - alt.fit.pred,
+                                     fr, beside=alt.beside, k0_refitted=alt.fit_k0, rms_alt=rms_a))
+                continue
+            null_sse, null_preds = alt.held_out(engine, masks, k0)
+            _, preds = cross_validate(engine, terms, fr.u, masks, k0, fit_k0=alt.fit_k0)
             sse = np.array([engine.score((meas - preds[i])[m]) for i, m in enumerate(masks)])
             # a fold where the candidate hardly changes the held-out prediction says nothing
             informative = np.array([np.sum((preds[i] - null_preds[i])[m] ** 2) > INFORMATIVE * max(null_sse[i], 1e-300)
@@ -1437,13 +1523,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 folds_there = f"{int(np.sum((sp < npre) & inf_p))}/{int(inf_p.sum())}"
                 if not (inf_p.sum() >= 2 and np.sum((sp < npre) & inf_p) > inf_p.sum() / 2 and gain_there >= s.min_gain):
                     failed_where = where_name
-            n_eff = _effective_n(meas - fr.pred)
-            dbic = n_eff * math.log(max(fr.rss, 1e-300) / max(rss_null, 1e-300)) + len(term.free) * math.log(n_eff)
-            evid.append(Evidence(name, fr.entries[-1]["params"], _rms((meas - fr.pred)[allm]), sse, null_sse, informative, dbic,
-                                 fr.pred - cur.pred, fr, failed_where, where_name, gain_there, folds_there))
+            evid.append(Evidence(name, fr.entries[-1]["params"], rms_c, sse, null_sse, informative, dbic,
+                                 fr.pred - alt.fit.pred, fr, failed_where, where_name, gain_there, folds_there,
+                                 alt.beside, alt.fit_k0, rms_a))
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
-        base_rms = _rms((meas - cur.pred)[allm])
-        cands_out = [e.as_dict(s, base_rms) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
+        cands_out = [e.as_dict(s) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
         winner = None
         blocked = set()
         for e in passing:
@@ -1464,7 +1548,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 for o, corr in rivals:
                     confounded.append({"effects": [e.name, o.name], "correlation": float(corr),
                                        "gains": [e.heldout_gain, o.heldout_gain],
-                                       "evidence": {e.name: e.as_dict(s, base_rms), o.name: o.as_dict(s, base_rms)},
+                                       "evidence": {e.name: e.as_dict(s), o.name: o.as_dict(s)},
                                        "experiment": separating_experiment(e.name, o.name)})
                     blocked.add(o.name)
                 blocked.add(e.name)
@@ -1477,10 +1561,19 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         for c in cands_out:
             c["significant"] = c["name"] == winner.name
         named.append(winner.name)
-        cur_terms = cur_terms + [_terms_for(winner.name, cmp_)]
         say(0.1 + 0.8 * (step + 1) / s.max_effects, f"adding {winner.name} and refitting everything together")
-        refit = _fit(engine, cur_terms, np.concatenate([[math.log(winner.fit.g)], winner.fit.u[1:]]), allm,
-                     fit_k0=False, k0=k0)
+        # the model goes on as the one that was cross-validated: an effect judged beside a
+        # stiffness varying with speed keeps it (held, not named: on clean recordings it takes up
+        # how the transition's dependence on speed differs from eq. (5)), with the κ0 refitted there
+        wterms = (beside_rate.terms if winner.beside else cur_terms) + [_terms_for(winner.name, cmp_)]
+        if winner.beside:
+            cmp_.notes.append(f"{winner.name} was judged beside {winner.beside} (rate_stiffness, held with it in "
+                              f"the model written, not named)")
+        cur_terms = wterms
+        head = 2 if winner.k0_refitted else 1  # log g (and log κ0, refitted with it)
+        k0 = winner.fit.k0
+        refit = _fit(engine, cur_terms, np.concatenate([[math.log(winner.fit.g)], winner.fit.u[head:]]),
+                     allm, fit_k0=False, k0=k0)
         cur = refit
         cur_u = refit.u[1:]
         steps.append({"label": f"+ {winner.name}", "name": winner.name, "params": dict(refit.entries[-1]["params"]),
@@ -1520,7 +1613,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         unc = {k: v for k, v in params.uncertainty.items()
                if not (k.startswith("stribeck.") or k.startswith("transition_curve") or k in ("n", "sigma1"))}
         prov = dict(params.provenance)
-        prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation); level ×{final.g:.4g}, "
+        held = [e["name"] for e in final.entries if e["name"] not in named]
+        prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation)"
+                             + (f", {', '.join(held)} held with them" if held else "") + f"; level ×{final.g:.4g}, "
                              f"presliding stiffness ×{final.k0:.4g}, n {params.n:.3g} → {final_base.n:.3g}, "
                              f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g} and the S(v) levels refitted by "
                              f"output error in {cmp_.space}")

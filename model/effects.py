@@ -143,6 +143,19 @@ def _softening(v, ctx):
     return 1.0 + v["h"] * -np.expm1(-n / v["n_c"])
 
 
+def _rate_stiffness(v, ctx):
+    # the presliding stiffness as a smooth function of the log of the sliding speed,
+    # κ = e^{c1·ℓ + c2·ℓ²}, ℓ = ln(max(|v|, v_floor)/v_ref): a rate-dependent (viscoelastic)
+    # contact, and also what a contact whose transition depends on speed otherwise than eq. (5)
+    # says looks like to the model. Quadratic in ℓ: both ends of the speed range may stiffen.
+    s = np.maximum(np.abs(ctx.signal("velocity", "rate_stiffness")), v["v_floor"])
+    ell = np.log(s / v["v_ref"])
+    return np.exp(np.clip(v["c1"] * ell + v["c2"] * ell * ell, -RATE_STIFFNESS_LOG_MAX, RATE_STIFFNESS_LOG_MAX))
+
+
+RATE_STIFFNESS_LOG_MAX = 3.0  # |ln κ| at most: a factor e³ ≈ 20 either way, the span of a stiffness factor
+
+
 def _stiffness(v, ctx):
     return np.full(ctx.time.shape, v["kappa"])
 
@@ -172,6 +185,14 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
             EffectParam("n_c", "reversals", 0.0, 1e12, "reversals to reach 63 % of the change", lo_open=True),
             EffectParam("min_excursion", "position", 0.0, 1e12, "smallest back-travel counted as a reversal")),
            ("reversals",), _softening, "alternate presliding cycles with long rests (time) at a fixed load"),
+    Effect("rate_stiffness", "the presliding spring's stiffness varies smoothly with the sliding speed, "
+           "κ = exp(c1·ℓ + c2·ℓ²) with ℓ = ln(|v|/v_ref)", "stiffness",
+           (EffectParam("c1", "1", -2.0, 2.0, "slope of ln κ against ln|v|"),
+            EffectParam("c2", "1", -1.0, 1.0, "curvature of ln κ against ln|v|"),
+            EffectParam("v_ref", "velocity", 0.0, 1e12, "speed at which κ = 1", lo_open=True),
+            EffectParam("v_floor", "velocity", 0.0, 1e12, "speeds below this count as this (rest)", lo_open=True)),
+           ("velocity",), _rate_stiffness, "presliding cycles of one amplitude at several speeds, the slow ones "
+           "repeated at the session's end"),
     Effect("presliding_stiffness", "the presliding spring is uniformly stiffer (κ > 1) or softer than the "
            "transition curve", "stiffness",
            (EffectParam("kappa", "1", 0.01, 100.0, "stiffness factor"),),

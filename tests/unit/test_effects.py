@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from leuven_friction.model import FrictionParams, ParameterError, simulate_displacement, simulate_force
-from leuven_friction.model.effects import EFFECTS, Signals, predict, significant_reversals, validate_effect_entry
+from leuven_friction.model.effects import EFFECTS, Context, Signals, predict, significant_reversals, validate_effect_entry
 
 
 def _entry(name, **params):
@@ -19,6 +19,22 @@ def test_every_effect_declares_units_bounds_and_how_it_acts():
         assert e.acts_on in ("friction", "stiffness")
         assert e.params and all(p.unit and p.lo <= p.hi and p.description for p in e.params)
         assert e.separated_by
+
+
+def test_rate_stiffness_is_a_power_of_the_speed_above_its_floor_and_capped():
+    # c2 = 0: κ = (|v|/v_ref)^c1 — 1 at the reference speed, √2 at twice it (either sign of v),
+    # the floor's value at rest, and at most e³ (a factor 20, the span of a stiffness factor)
+    v = np.array([0.0, 1e-6, 0.01, 0.02, -0.04, 0.04, 1e3])
+    k = EFFECTS["rate_stiffness"].scale({"c1": 0.5, "c2": 0.0, "v_ref": 0.02, "v_floor": 0.01},
+                                        Context(time=np.arange(7.0), velocity=v))
+    assert k[3] == pytest.approx(1.0)
+    assert k[4] == pytest.approx(2**0.5) and k[5] == pytest.approx(2**0.5)
+    assert k[:3] == pytest.approx(np.full(3, 0.5**0.5))
+    assert k[6] == pytest.approx(np.e**3)
+    # c2 > 0 stiffens both ends: ln κ = c2·ln²(|v|/v_ref)
+    k2 = EFFECTS["rate_stiffness"].scale({"c1": 0.0, "c2": 0.1, "v_ref": 0.02, "v_floor": 1e-9},
+                                         Context(time=np.arange(2.0), velocity=np.array([0.002, 0.2])))
+    assert k2 == pytest.approx(np.full(2, np.exp(0.1 * np.log(10.0) ** 2)))
 
 
 @pytest.mark.parametrize("entry, field", [
