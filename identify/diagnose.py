@@ -493,7 +493,10 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
     if name == "rate_stiffness":
         st = cmp_.params.stribeck
         v_ref = min(abs(st.positive.vs), abs(st.negative.vs))
-        return Term(name, {"v_ref": v_ref, "v_floor": min(cmp_.v_rest, v_ref)}, (("c1", "lin", -2.0, 2.0), ("c2", "lin", -1.0, 1.0)))
+        # speeds below the rest threshold count as rest (at least 10⁻³ v_s: an exactly logged
+        # position has no noise to set that threshold)
+        v_floor = min(max(cmp_.v_rest, 1e-3 * v_ref), v_ref)
+        return Term(name, {"v_ref": v_ref, "v_floor": v_floor}, (("c1", "lin", -2.0, 2.0), ("c2", "lin", -1.0, 1.0)))
     if name == "presliding_stiffness":
         return Term(name, {}, (("kappa", "log", math.log(0.05), math.log(20.0)),))
     raise KeyError(name)
