@@ -1041,9 +1041,13 @@ class Evidence:
     where: str | None = None  # the regime where its physics shows
     gain_where: float | None = None  # pooled held-out gain there
     folds_where: str | None = None  # folds improved / informative there
-    beside: str | None = None  # what the alternative it beat held besides the named effects
-    k0_refitted: bool = False  # κ0 was refitted with it (its fit's u: log g, log κ0, ...)
-    rms_alt: float = 0.0  # in-sample RMS of the alternative it is judged against
+    against: Alternative | None = field(repr=False, default=None)  # the alternative it is judged against
+    rms_alt: float = 0.0  # that alternative's in-sample RMS
+
+    @property
+    def beside(self) -> str | None:
+        """What the alternative held besides the named effects."""
+        return self.against.beside if self.against is not None else None
 
     @property
     def cross_validated(self) -> bool:
@@ -1506,7 +1510,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 # held out, a candidate does worse than in-sample: one this far below the threshold
                 # on the data it was fitted to is not cross-validated
                 evid.append(Evidence(name, fr.entries[-1]["params"], rms_c, None, None, None, dbic, fr.pred - alt.fit.pred,
-                                     fr, beside=alt.beside, k0_refitted=alt.fit_k0, rms_alt=rms_a))
+                                     fr, against=alt, rms_alt=rms_a))
                 continue
             null_sse, null_preds = alt.held_out(engine, masks, k0)
             _, preds = cross_validate(engine, terms, fr.u, masks, k0, fit_k0=alt.fit_k0)
@@ -1528,7 +1532,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                     failed_where = where_name
             evid.append(Evidence(name, fr.entries[-1]["params"], rms_c, sse, null_sse, informative, dbic,
                                  fr.pred - alt.fit.pred, fr, failed_where, where_name, gain_there, folds_there,
-                                 alt.beside, alt.fit_k0, rms_a))
+                                 alt, rms_a))
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         cands_out = [e.as_dict(s) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
         winner = None
@@ -1568,12 +1572,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # the model goes on as the one that was cross-validated: an effect judged beside a
         # stiffness varying with speed keeps it (held, not named: on clean recordings it takes up
         # how the transition's dependence on speed differs from eq. (5)), with the κ0 refitted there
-        wterms = (beside_rate.terms if winner.beside else cur_terms) + [_terms_for(winner.name, cmp_)]
         if winner.beside:
             cmp_.notes.append(f"{winner.name} was judged beside {winner.beside} (rate_stiffness, held with it in "
                               f"the model written, not named)")
-        cur_terms = wterms
-        head = 2 if winner.k0_refitted else 1  # log g (and log κ0, refitted with it)
+        cur_terms = winner.against.terms + [_terms_for(winner.name, cmp_)]
+        head = 2 if winner.against.fit_k0 else 1  # log g (and log κ0, refitted with it)
         k0 = winner.fit.k0
         refit = _fit(engine, cur_terms, np.concatenate([[math.log(winner.fit.g)], winner.fit.u[head:]]),
                      allm, fit_k0=False, k0=k0)
