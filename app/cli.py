@@ -74,6 +74,8 @@ def cmd_simulate(args) -> int:
     if table_format(args.out) == "mat":  # .mat is read, not written
         raise UserError(f"--out {args.out}: MATLAB files are read, not written; use .csv or .parquet")
     params = _params(args.params, args.model)
+    if args.experiment and args.smooth_path:
+        raise UserError("--smooth-path: only with --input (an experiment's motion is not logged)")
     if args.experiment:
         if args.experiment not in EXPERIMENTS:
             raise UserError(f"--experiment: unknown {args.experiment!r}; known: {', '.join(EXPERIMENTS)}")
@@ -84,6 +86,8 @@ def cmd_simulate(args) -> int:
         return 0
     if not args.input:
         raise UserError("simulate: give --experiment NAME, --input REC.csv or --list")
+    if args.smooth_path and args.drive != "displacement":
+        raise UserError("--smooth-path: only with --drive displacement (the logged position is what is smoothed)")
     from ..identify.data import load_recording, parse_column_mapping
     from ..model.simulate import simulate_displacement, simulate_force
 
@@ -93,16 +97,28 @@ def cmd_simulate(args) -> int:
     rec = load_recording(_recording(args.input), columns=cols, require=need)
     stages.verbose = len(rec) >= _BIG_RECORDING
     stages.done(f"read {len(rec)} rows from {args.input}")
+    position = rec.position
+    if args.smooth_path:
+        import numpy as np
+
+        from ..identify.diagnose import compared_path
+
+        if len(rec) < 50:
+            raise UserError(f"--smooth-path: {args.input} has {len(rec)} rows; the position's noise and encoder "
+                            f"step are estimated from at least 50")
+        cp = compared_path(np.asarray(rec.position, dtype=float), float(np.median(np.diff(rec.time))))
+        position = cp.path
+        stages.done(f"path smoothed as diagnose compares it: {cp.window} samples, wiggles below {2 * cp.h:.3g} removed")
     if params.effects:
         # a model extended by the diagnosis predicts with its effects, for either drive (the
         # one prediction path of model.effects; a force drive evaluates them along its motion)
         from ..model.effects import Signals, predict
 
-        sig = Signals(time=rec.time, position=rec.position if args.drive == "displacement" else None,
+        sig = Signals(time=rec.time, position=position if args.drive == "displacement" else None,
                       force=rec.force, load=rec.normal_load)
         r = predict(params, args.drive, sig)
     elif args.drive == "displacement":
-        r = simulate_displacement(params, rec.time, rec.position)
+        r = simulate_displacement(params, rec.time, position)
     else:
         r = simulate_force(params, rec.time, rec.force)
     stages.done("simulated")
@@ -329,6 +345,10 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--input", help="recorded CSV to drive the model with (or sample:NAME)")
     s.add_argument("--drive", choices=["displacement", "force"], default="displacement",
                    help="which recorded column drives the model (default: displacement)")
+    s.add_argument("--smooth-path", action="store_true",
+                   help="drive along the logged position smoothed as `diagnose` compares it (encoder steps and "
+                        "sensor noise are measurement, not motion; the output's position column is that path); "
+                        "default: the position as logged")
     s.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau")
     s.add_argument("--out", help="output table: CSV, or Parquet for a .parquet name")
     s.set_defaults(func=cmd_simulate)

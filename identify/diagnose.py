@@ -14,10 +14,12 @@ out-of-sample evidence, add it, refit, look again.
    gross sliding). The noise floor — the log's, and what the position noise carries through
    the model — is estimated from the recording and printed, regime by regime.
 2. **The alternative** every effect must beat: the current model with its level g,
-   presliding stiffness κ0, n, σ1 and S(v) levels refitted, beside a free steady curve
-   (``FreeSteadyCurve``: any correction to S(v), a level of its own at rest, and for friction
-   taken from an applied force a free inertia), which is linear and profiled out of every
-   evaluation.
+   presliding stiffness κ0, n, σ1, S(v) levels and — where that leaves the model alone
+   clearly closer to the record — the rise of each segment of a piecewise-linear transition
+   curve refitted (``refit_transition``: first as the model alone, then from there), beside a
+   free steady curve (``FreeSteadyCurve``: any correction to S(v), a
+   level of its own at rest, and for friction taken from an applied force a free inertia),
+   which is linear and profiled out of every evaluation.
 3. **Candidates** (``model.effects.EFFECTS``): each is screened (its shape parameter — time
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
@@ -36,8 +38,9 @@ out-of-sample evidence, add it, refit, look again.
    neither is named.
 6. **Several effects.** Name, add, refit all together, look again, until nothing passes; the
    gap after every step is kept. The model written (``written_fits``) is, at every step, the
-   model as given with n, σ1, the S(v) levels, g, κ0 and that step's effects refitted to the
-   recording alone, without the free steady curve.
+   model as given with n, σ1, the S(v) levels, the curve's segments, g, κ0 and that step's
+   effects refitted to the recording alone, without the free steady curve (beside a free
+   inertia for friction taken from an applied force, which is not written).
 """
 
 from __future__ import annotations
@@ -70,6 +73,7 @@ class Settings:
     max_effects: int = 3
     free_steady: bool = True  # the alternative holds a free correction to S(v) (FreeSteadyCurve)
     rate_nuisance: bool = True  # a stiffness effect is judged beside a stiffness varying with speed (rate_alternative)
+    refit_curve: bool = True  # the alternative reshapes a piecewise-linear F_d segment by segment (refit_transition)
     space: str = "friction"  # "position": a force-driven recording compared by output error in position
     candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
 
@@ -102,6 +106,7 @@ class Comparison:
     memory_offset: np.ndarray | None = None  # 1 where the memory still holds the log's unknown start, else 0
     raw: np.ndarray | None = None  # the logged signal the noise floor comes from (friction, or applied force)
     inertial_noise: float = 0.0  # friction from an applied force: the sd the inertial term I·Δv/T adds
+    inertia: float | None = None  # friction from an applied force: the I of eq. (8) it was taken with
     input_noise: np.ndarray | None = None  # the model's friction noise from the position it is driven by
 
     def noise_on(self, mask: np.ndarray) -> float:
@@ -215,6 +220,28 @@ def smoothed_path(x: np.ndarray, window: int, h: float) -> np.ndarray:
     return play(savgol_filter(x, window, 2, mode="interp"), h)
 
 
+@dataclass(frozen=True)
+class ComparedPath:
+    """The logged position as the model is driven along it: sensor noise (sd) and encoder
+    steps (step) are the measurement, not motion."""
+
+    path: np.ndarray
+    sd: float
+    step: float
+    window: int
+    h: float
+
+
+def compared_path(x: np.ndarray, dt: float) -> ComparedPath:
+    """``smoothed_path`` with its window and play width derived from the position's own noise
+    and quantisation (``position_noise``): the path the diagnosis compares along, and the one
+    ``simulate --smooth-path`` drives."""
+    sd, q = position_noise(x)
+    w = smoothing_window(x, dt, sd)
+    h = 2.0 * max(sd, q / 2.0)
+    return ComparedPath(smoothed_path(x, w, h), sd, q, w, h)
+
+
 def savgol_noise_gain(window: int) -> float:
     """The sd of white noise after the quadratic Savitzky–Golay smoothing of ``window``
     samples (the central point), per unit sd: √(3(3w² − 7) / (4w(w² − 4)))."""
@@ -272,10 +299,8 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     if len(t) < 50:
         raise DataError(f"{rec.source}: diagnosis needs at least 50 samples, got {len(t)}")
     dt = float(np.median(np.diff(t)))
-    sdx, q = position_noise(x)
-    w = smoothing_window(x, dt, sdx)
-    h = 2.0 * max(sdx, q / 2.0)
-    path = smoothed_path(x, w, h)
+    cp = compared_path(x, dt)
+    sdx, q, w, h, path = cp.sd, cp.step, cp.window, cp.h, cp.path
     # the sampling may change within a record (parts logged at different rates, gaps): the
     # slope is taken against the actual times, as the fit does
     vel = local_slope(t, x, w, uniform=bool(np.ptp(np.diff(t)) <= 0.01 * dt))
@@ -332,7 +357,7 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     meas = friction_from_force(f, vel, inertia, t, L)
     cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, f, 0.0, sdx, w, min_exc, v_rest, notes=notes,
                       average=L, acceleration=mean_acceleration(vel, t, L), raw=f,
-                      inertial_noise=math.sqrt(2.0) * inertia * v_noise / ((L - 1) * dt))
+                      inertial_noise=math.sqrt(2.0) * inertia * v_noise / ((L - 1) * dt), inertia=inertia)
     cmp_.noise = cmp_.log_noise()
     notes.append(f"compared in friction, taken from the applied force by eq. (8) averaged over {L} samples "
                  f"({L * dt:.3g} s): mean force − I·Δv/T (the inertial term in integral form, the position "
@@ -658,6 +683,35 @@ def memory_constant(r: np.ndarray, mask: np.ndarray, offset: np.ndarray | None) 
     return (float(np.mean(r[on])) if on.any() else 0.0) * offset
 
 
+@dataclass(frozen=True)
+class ModelNuisance:
+    """What the model written leaves free beside its parameters, fitted to a residual by
+    linear least squares: the constant of ``initial_memory`` and, for friction taken from an
+    applied force by eq. (8), the change ΔI of the inertia it was taken with (the residual then
+    holds ΔI·ā, linear in ΔI). ``correction`` over every sample."""
+
+    correction: np.ndarray
+    d_inertia: float = 0.0
+
+
+def model_nuisance(r: np.ndarray, mask: np.ndarray, offset: np.ndarray | None,
+                   acceleration: np.ndarray | None) -> ModelNuisance:
+    cols, names = [], []
+    if offset is not None and (mask & (offset > 0)).any():
+        cols.append(offset)
+        names.append("memory")  # the constant of ``initial_memory``
+    if acceleration is not None and np.any(acceleration[mask] != 0):
+        cols.append(acceleration)
+        names.append("d_inertia")
+    if not cols:
+        return ModelNuisance(np.zeros_like(r))
+    X = np.column_stack(cols)
+    coef, *_ = np.linalg.lstsq(X[mask], r[mask], rcond=None)
+    # f̄ = I_true·ā + F, so r = f̄ − I·ā − F_model ≈ (I_true − I)·ā: the coefficient of ā is ΔI
+    vals = {nm: float(c) for nm, c in zip(names, coef)}
+    return ModelNuisance(X @ coef, vals.get("d_inertia", 0.0))
+
+
 class Engine:
     """Predicts the compared signal for the base parameters, a level g, a stiffness κ0 and
     a list of effect entries, through ``model.effects``' factors and the simulator's scale
@@ -675,6 +729,7 @@ class Engine:
         self._cache_key = None
         self._cache = None
         self.sims = 0
+        self.free_inertia = False  # the model written: eq. (8)'s inertia left free beside it (``model_nuisance``)
 
     def loss(self) -> dict:
         """Least-squares loss: plain in friction; in position, soft-L1 beyond a few noise
@@ -693,18 +748,27 @@ class Engine:
 
     def nuisance(self, r: np.ndarray, mask: np.ndarray, model: np.ndarray) -> np.ndarray:
         """The alternative's free steady curve (and level at rest) fitted to the residual
-        ``r`` of the prediction ``model`` on ``mask``; without it, the memory's constant only."""
+        ``r`` of the prediction ``model`` on ``mask``; without it, ``model_nuisance`` (the
+        memory's constant, and the inertia where ``free_inertia`` is set)."""
         if self.free is not None:
             return self.free.fit(r, mask, model)
-        return memory_constant(r, mask, self.c.memory_offset)
+        return self.model_nuisance(r, mask).correction
+
+    def model_nuisance(self, r: np.ndarray, mask: np.ndarray) -> ModelNuisance:
+        """The nuisance of the model written (``model_nuisance``): the memory's constant, and the
+        inertia where ``free_inertia`` is set."""
+        return model_nuisance(r, mask, self.c.memory_offset, self.c.acceleration if self.free_inertia else None)
 
     def residual_at(self, r: np.ndarray, idx: np.ndarray, model: np.ndarray) -> np.ndarray:
-        """The residual ``r`` beside the free steady curve fitted on the samples ``idx`` (a
-        least-squares step's thinned set: ~20 coefficients need no more), at those samples."""
+        """The residual ``r`` beside the engine's nuisance (``nuisance``) fitted on the samples
+        ``idx`` (a least-squares step's thinned set: ~20 coefficients need no more), at those
+        samples."""
         if self.free is None:
-            if self.c.memory_offset is None:
+            if self.c.memory_offset is None and not (self.free_inertia and self.c.acceleration is not None):
                 return r[idx]
-            return r[idx] - memory_constant(r[idx], np.ones(len(idx), bool), self.c.memory_offset[idx])
+            acc = self.c.acceleration[idx] if (self.free_inertia and self.c.acceleration is not None) else None
+            off = None if self.c.memory_offset is None else self.c.memory_offset[idx]
+            return r[idx] - model_nuisance(r[idx], np.ones(len(idx), bool), off, acc).correction
         key = self._thin_masks.get(id(idx))
         if key is None or key[0] is not idx:
             m = np.zeros(len(r), dtype=bool)
@@ -825,12 +889,41 @@ def fit_result(engine: Engine, g: float, k0: float, entries: list, u: np.ndarray
 
 
 REFIT_BASE_U = 8  # refit_transition's vector: log g, log κ0, log n, log σ1, then Fs, Fc factors per side
+CURVE_FACTOR_MAX = 20.0  # each segment of a piecewise-linear F_d refitted within this factor of the file's
+CURVE_GROUPS_MAX = 8  # … in at most this many groups of neighbouring segments (each one simulation per Jacobian)
+CURVE_MIN_GAIN = 0.1  # … and only if the model alone then leaves this much less RMS gap
+REFIT_NFEV_FROM = 20  # least-squares steps of a refit that starts from another's solution (each step simulates)
+
+
+def engine_gap(engine: Engine, r: TransitionRefit, mask: np.ndarray) -> np.ndarray:
+    """The residual of a refit (``refit_transition``) beside the engine's nuisance fitted on ``mask``."""
+    engine.set_base(r.params)
+    m = engine.predict(r.g, r.k0, r.entries)
+    return engine.c.measured - m - engine.nuisance(engine.c.measured - m, mask, m)
+
+
+def curve_groups(params: FrictionParams, refit_curve: bool) -> np.ndarray:
+    """The group of each segment of a piecewise-linear F_d whose rise ``refit_transition``
+    scales by one factor: every segment its own up to CURVE_GROUPS_MAX segments, else that many
+    runs of neighbours. Empty: the curve is not refitted."""
+    tc = params.transition_curve
+    if not refit_curve or tc.kind != "piecewise_linear":
+        return np.zeros(0, dtype=np.int64)
+    nseg = len(tc.F) - 1
+    return (np.arange(nseg) * min(nseg, CURVE_GROUPS_MAX)) // nseg
+
+
+def refit_length(params: FrictionParams, refit_curve: bool) -> int:
+    """Length of ``refit_transition``'s base vector (before the terms' parameters)."""
+    groups = curve_groups(params, refit_curve)
+    return REFIT_BASE_U + (int(groups.max()) + 1 if len(groups) else 0)
 
 
 @dataclass(frozen=True)
 class TransitionRefit:
-    """What ``refit_transition`` found: the base with n, σ1 and S(v) updated, the level, the
-    stiffness, the terms' entries, and the solution vector (a warm start for the next)."""
+    """What ``refit_transition`` found: the base with n, σ1, S(v) (and the transition curve's
+    segments) updated, the level, the stiffness, the terms' entries, and the solution vector
+    (a warm start for the next)."""
 
     params: FrictionParams
     g: float
@@ -840,12 +933,16 @@ class TransitionRefit:
 
 
 def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_u: np.ndarray,
-                     mask: np.ndarray, start: np.ndarray | None = None, max_nfev: int = 40) -> TransitionRefit:
+                     mask: np.ndarray, start: np.ndarray | None = None, max_nfev: int = 40,
+                     refit_curve: bool = False) -> TransitionRefit:
     """Part of the alternative: the level g, the presliding stiffness κ0, the exponent n of
     eq. (5) (how sharply presliding turns into sliding), the micro-viscous σ1 of eq. (3) and
     the levels of S(v) (Fs, Fc per side, each within a factor 1.5), refitted together by output
-    error: what an effect must beat is the best the base model can do on its own. ``start``:
-    a solution vector to start from (the bounds stay those of ``params``)."""
+    error: what an effect must beat is the best the base model can do on its own. With
+    ``refit_curve``, the rise of a piecewise-linear F_d over each of its segments too (within
+    CURVE_FACTOR_MAX): a curve identified on a few presliding branches at the start of a
+    session (or on branches an effect distorted) is reshaped by every transition of the whole
+    record. ``start``: a solution vector to start from (the bounds stay those of ``params``)."""
     if params.model != "leuven":
         return TransitionRefit(params, 1.0, 1.0, [], np.zeros(0))
     from ..model import Stribeck, StribeckSide
@@ -856,6 +953,11 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     # S(v) levels per side, Fs and Fc as factors; vs, δ and σ2 held: a session whose speeds rise
     # with time would let them take up a drift in time
     NS = REFIT_BASE_U - 4
+    nb = refit_length(params, refit_curve)
+    NC = nb - REFIT_BASE_U
+    tc = params.transition_curve
+    groups = curve_groups(params, refit_curve)
+    rise = np.diff(np.asarray(tc.F, dtype=float)) if NC else np.zeros(0)
 
     def side(s, f):
         return StribeckSide(Fs=s.Fs * f[0], Fc=s.Fc * f[1], vs=s.vs, delta=s.delta, sigma2=s.sigma2)
@@ -863,13 +965,17 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     def unpack(u):
         g, kk, ln, ls = math.exp(u[0]), math.exp(u[1]), u[2], u[3]
         fac = np.exp(u[4:4 + NS])
-        entries, i = [], 4 + NS
+        entries, i = [], nb
         for term in terms:
             m = len(term.free)
             entries.append(_entry(term, u[i:i + m]))
             i += m
         st = Stribeck(side(sp, fac[:2]), side(sn, fac[2:]))
-        return g, kk, params.replace(n=float(n0 * math.exp(ln)), sigma1=float(s10 * math.exp(ls)), stribeck=st), entries
+        p = params.replace(n=float(n0 * math.exp(ln)), sigma1=float(s10 * math.exp(ls)), stribeck=st)
+        if NC:
+            F = np.concatenate([[0.0], np.cumsum(rise * np.exp(u[REFIT_BASE_U:nb][groups]))])
+            p = p.replace(transition_curve=TransitionCurve(kind="piecewise_linear", z=tc.z, F=tuple(map(float, F))))
+        return g, kk, p, entries
 
     idx = _thinned(mask)
 
@@ -881,11 +987,12 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
 
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)
+    c = math.log(CURVE_FACTOR_MAX)
     lo = np.concatenate([[-math.log(5), -math.log(20), math.log(1.0 / n0), -math.log(100)], np.full(NS, -b),
-                         [f[2] for t in terms for f in t.free]])
+                         np.full(NC, -c), [f[2] for t in terms for f in t.free]])
     hi = np.concatenate([[math.log(5), math.log(20), math.log(40.0 / n0), math.log(100)], np.full(NS, b),
-                         [f[3] for t in terms for f in t.free]])
-    u0 = np.concatenate([[0.0, 0.0, 0.0, 0.0], np.zeros(NS), prior_u]) if start is None else np.asarray(start, float)
+                         np.full(NC, c), [f[3] for t in terms for f in t.free]])
+    u0 = np.concatenate([np.zeros(nb), prior_u]) if start is None else np.asarray(start, float)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3,
                         max_nfev=max_nfev if engine.c.space == "friction" else 15, **engine.loss())
@@ -1449,8 +1556,40 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             tm = Term(tm.name, {k: e["params"][k] for k in tm.fixed}, tm.free)
             prior_terms.append(tm)
             prior_u = np.concatenate([prior_u, _entry_to_u(tm, e["params"])])
-    base_params = refit_transition(engine, base_params, prior_terms, prior_u, allm).params
-    null = _fit(engine, prior_terms, np.concatenate([[0.0, 0.0], prior_u]), allm, fit_k0=True, k0=1.0)
+    # first as the model alone (its memory's constant and inertia free, as the model written), then
+    # beside the free steady curve from there: a curve the fit left far off (a segment of the
+    # stiffness of a jump) would otherwise stay where the free curve's flat valley holds it
+    free = engine.free
+    engine.free, engine.free_inertia = None, True
+    try:
+        alone = refit_transition(engine, base_params, prior_terms, prior_u, allm)
+        refit_curve = s.refit_curve and base_params.model == "leuven" and refit_length(base_params, True) > REFIT_BASE_U
+        if refit_curve:
+            # the curve's segments are reshaped only where that pays clearly (CURVE_MIN_GAIN): a
+            # curve that already fits stays as the file has it, so the decision is not moved by a
+            # reshaping the data do not ask for
+            nc = refit_length(base_params, True) - REFIT_BASE_U
+            shaped = refit_transition(engine, base_params, prior_terms, prior_u, allm, refit_curve=True,
+                                      start=np.concatenate([alone.u[:REFIT_BASE_U], np.zeros(nc),
+                                                            alone.u[REFIT_BASE_U:]]), max_nfev=REFIT_NFEV_FROM)
+            gap_plain, gap_shaped = (_rms(engine_gap(engine, r, allm)[allm]) for r in (alone, shaped))
+            refit_curve = gap_shaped < (1.0 - CURVE_MIN_GAIN) * gap_plain
+            cmp_.notes.append(f"the transition curve's segments refitted to the whole record: the model alone leaves "
+                              f"{gap_shaped:.3g} against {gap_plain:.3g} with the file's shape — "
+                              + ("kept" if refit_curve else f"under {CURVE_MIN_GAIN:.0%} less, the file's shape kept"))
+            if refit_curve:
+                alone = shaped
+    finally:
+        engine.free, engine.free_inertia = free, False
+    # (without the free curve, refitted once more with the inertia held, as the decision compares)
+    base_refit = refit_transition(engine, base_params, prior_terms, prior_u, allm, start=alone.u,
+                                  refit_curve=refit_curve, max_nfev=REFIT_NFEV_FROM)
+    base_params = base_refit.params
+    # the level and stiffness start where the base's refit left them (κ0 and the curve's
+    # segments were fitted together: from κ0 = 1 the reshaped curve would start off its basin)
+    refit_prior_u = base_refit.u[len(base_refit.u) - len(prior_u):] if len(base_refit.u) else prior_u
+    null = _fit(engine, prior_terms, np.concatenate([[math.log(base_refit.g), math.log(base_refit.k0)], refit_prior_u]),
+                allm, fit_k0=True, k0=1.0)
     k0 = null.k0
     masks = [m & allm for m in fold_masks(n, s.folds, s.blocks_per_fold, cmp_.windows)]
     # the transitions: within twice the presliding range of a reversal (at rest or moving),
@@ -1591,21 +1730,33 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     say(0.95, "refitting the model that is written (without the free steady curve)")
     # the model written is refitted from the model as given, without the free steady curve: the
     # alternative's own n, σ1 and S(v) leaned on that curve (its free inertia, its level at rest)
-    written = written_fits(engine, params.replace(effects=()), fits)
+    written = written_fits(engine, params.replace(effects=()), fits, refit_curve=refit_curve,
+                           start=alone.u if len(alone.u) else None)
     (null, _), (final, final_base) = written[0], written[-1]
     for st, (wf, _) in zip(steps[1:], written):
-        st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant
+        st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant (and inertia)
         if wf.entries:
             st["params"] = dict(wf.entries[-1]["params"])
         step_preds.append(wf.pred)
     steps[1]["label"] = f"alternative: level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
+    curve_refitted = params.model == "leuven" and refit_curve
     if params.model == "leuven":
         levels = [getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
                   for sd in ("positive", "negative") for k in ("Fs", "Fc")]
         cmp_.notes.append(f"the model written (every step) refits, besides the level, the stiffness and the effects: "
                           f"n {params.n:.3g} → {final_base.n:.3g}, σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, "
                           f"the S(v) levels ×{min(levels):.3f} … ×{max(levels):.3f}"
+                          + (", the transition curve's segments" if curve_refitted else "")
                           + ("" if named else " (nothing named: the parameter file is left as it was)"))
+    if cmp_.inertia is not None:
+        # the gaps of the model written leave eq. (8)'s I free beside it, so that an inertia off in
+        # the file is not a friction misfit; it is not written: on a servo-driven stage a misfit of
+        # the model that follows the acceleration enters it as well
+        d_i = model_nuisance(meas - final.model, allm, cmp_.memory_offset, cmp_.acceleration).d_inertia
+        cmp_.notes.append(f"the gaps of the model written are of friction taken from the applied force with the "
+                          f"inertia refitted beside it: the recording's friction follows the acceleration as if I "
+                          f"were {cmp_.inertia + d_i:.4g}, against the {cmp_.inertia:.4g} it was taken with (not "
+                          f"written: a misfit of the model that follows the acceleration enters it too)")
     regimes = {}
     for k, m in regimes_m.items():
         m = m & allm
@@ -1623,8 +1774,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation)"
                              + (f", {', '.join(held)} held with them" if held else "") + f"; level ×{final.g:.4g}, "
                              f"presliding stiffness ×{final.k0:.4g}, n {params.n:.3g} → {final_base.n:.3g}, "
-                             f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g} and the S(v) levels refitted by "
-                             f"output error in {cmp_.space}")
+                             f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, the S(v) levels"
+                             + (", the transition curve's segments" if curve_refitted else "")
+                             + f" refitted by output error in {cmp_.space}")
         new_params = bake(final_base.replace(effects=()), final.g, final.k0).replace(
             effects=tuple(_clean_entry(e, cmp_) for e in final.entries), uncertainty=unc, provenance=prov)
     ctx = cmp_.context()
@@ -1643,15 +1795,21 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written
 
 
-def written_fits(engine: Engine, base: FrictionParams, fits: list) -> list:
+def written_fits(engine: Engine, base: FrictionParams, fits: list, refit_curve: bool = False,
+                 start: np.ndarray | None = None) -> list:
     """The model that goes into the parameter file at every step, refitted to the recording
     alone (the free steady curve of the alternative helps decide, it is not part of the
-    model): from ``base``, n, σ1, the S(v) levels, the level g, stiffness κ0 and that step's
-    effects (``refit_transition``). Every step is refitted in full, so each gap is the best the
+    model): from ``base``, n, σ1, the S(v) levels (with ``refit_curve``, the curve's segments),
+    the level g, stiffness κ0 and that step's effects (``refit_transition``). Every step is refitted in full, so each gap is the best the
     model does with those effects and the gain of a step is not held down by a base tuned
     without its effect. A step starts where the one before ended, its new effect where the
-    decision's fit left it. Returns (FitResult, refitted base) per step."""
+    decision's fit left it; the first from ``start`` (a whole solution vector: the same base and
+    the file's own effects refitted as the model alone, before the alternative's free curve was
+    added — its stiffness and curve segments were fitted together). The gaps are of friction
+    taken from an applied force with the inertia refitted beside the model (``model_nuisance``;
+    not written). Returns (FitResult, refitted base) per step."""
     engine.free = None
+    engine.free_inertia = True
     mask = engine.scored
     if base.model != "leuven":
         # n, σ1 and the S(v) levels refitted are the Leuven model's: the level, stiffness and effects only
@@ -1659,12 +1817,16 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list) -> list:
         return [(_fit(engine, terms, np.concatenate([[u[0], 0.0], u[1:]]), mask, fit_k0=True, k0=1.0), base)
                 for terms, u in fits]
     out, prev = [], None
+    nb = refit_length(base, refit_curve)
     for terms, u in fits:
         # u: log g, then the terms' parameters (the decision's fit)
-        shared = np.r_[u[0], np.zeros(REFIT_BASE_U - 1)] if prev is None else prev[:REFIT_BASE_U]
-        start = np.concatenate([shared, u[1:]])
+        if prev is None and start is not None:
+            u_start = np.asarray(start, float)  # the first step's terms are the file's own, as ``start``'s
+        else:
+            u_start = np.concatenate([np.r_[u[0], np.zeros(nb - 1)] if prev is None else prev[:nb], u[1:]])
         # a refit of a model the decision has already fitted: fewer steps than the alternative's
-        r = refit_transition(engine, base, terms, u[1:], mask, start=start, max_nfev=WRITTEN_NFEV)
+        r = refit_transition(engine, base, terms, u[1:], mask, start=u_start, max_nfev=WRITTEN_NFEV,
+                             refit_curve=refit_curve)
         out.append((fit_result(engine, r.g, r.k0, r.entries, r.u, mask), r.params))
         prev = r.u
     return out

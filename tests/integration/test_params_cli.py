@@ -104,6 +104,29 @@ def test_cli_simulate_input_uses_recorded_position(tmp_path, capsys):
     assert F[-1] == pytest.approx(_steady_friction("negative", -v), abs=1e-3)
 
 
+def test_cli_simulate_smooth_path_takes_encoder_steps_for_measurement(tmp_path, capsys):
+    # the same motion logged by an encoder of 5 µrad steps: along the logged steps the model's
+    # presliding state jumps at every step (the velocity is zero, then one step per sample);
+    # along the smoothed path it stays near the steady friction of the exact motion
+    v, dt, q = 0.0013, 1e-3, 5e-6
+    t = np.arange(0, 3, dt)
+    x = np.where(t < 1.5, v * t, v * 1.5 - v * (t - 1.5))
+    rec = tmp_path / "rec.csv"
+    pd.DataFrame({"time": t, "position": np.round(x / q) * q}).to_csv(rec, index=False)
+    exact = _steady_friction("positive", v)
+    i = (t > 0.5) & (t < 1.45)
+    sd = {}
+    for flag in ([], ["--smooth-path"]):
+        out = tmp_path / f"pred{len(flag)}.csv"
+        rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "displacement", *flag, "--out", out)
+        assert rc == 0, err
+        sd[bool(flag)] = float(np.sqrt(np.mean((pd.read_csv(out)["friction_force"].to_numpy()[i] - exact) ** 2)))
+    assert sd[True] < 0.02 * exact and sd[True] < 0.35 * sd[False], sd
+    rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "force", "--smooth-path", "--out", tmp_path / "f.csv")
+    assert rc == 2 and "--smooth-path" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "f.csv").exists()
+
+
 def test_cli_missing_column_is_one_line(tmp_path, capsys):
     rec = tmp_path / "rec.csv"
     pd.DataFrame({"t": np.arange(20.0), "temperature": np.ones(20)}).to_csv(rec, index=False)

@@ -6,12 +6,15 @@ the regimes a candidate must help in."""
 import math
 
 import numpy as np
+import pytest
 from leuven_friction.identify.diagnose import (
     Comparison,
     FreeSteadyCurve,
     averaging_length,
     friction_from_force,
     gross_sliding,
+    mean_acceleration,
+    model_nuisance,
     steady_sliding,
 )
 from scipy.ndimage import uniform_filter1d
@@ -191,6 +194,31 @@ def test_free_steady_curve_holds_an_inertia_error_when_given_the_acceleration():
     assert np.max(np.abs(r - with_acc.fit(r, np.ones(len(v), bool)))) < 1e-6 * np.max(np.abs(r))
     without = FreeSteadyCurve(v, v_rest=1e-3)
     assert np.sqrt(np.mean((r - without.fit(r, np.ones(len(v), bool))) ** 2)) > 0.9 * np.sqrt(np.mean(r**2))
+
+
+def test_the_model_written_leaves_the_inertia_and_the_memory_constant_free():
+    # a plant of I = 2.7 driven along x = A sin(ωt), its friction taken from the applied force by
+    # eq. (8) with I = 2: beside the model's (exact) friction the residual is 0.7·ā, plus the
+    # memory's constant 0.4 over the start. Both come back, and ΔI with the sign that names the
+    # recording's inertia (2 + ΔI = 2.7)
+    dt, A, w = 1e-3, 0.3, 2 * np.pi * 1.7
+    t = np.arange(0, 6, dt)
+    v = A * w * np.cos(w * t)
+    F = 4.0 + 1.5 * np.sin(0.9 * t)
+    f = -2.7 * A * w * w * np.sin(w * t) + F
+    L = 21
+    acc = mean_acceleration(v, t, L)
+    offset = (t < 1.5).astype(float)
+    model = uniform_filter1d(F, L, mode="nearest")  # the model's friction averaged like the measurement
+    r = friction_from_force(f, v, 2.0, t, L) - model + 0.4 * offset
+    inner = np.zeros(len(t), bool)
+    inner[L:-L] = True  # the clipped windows at the ends are no test of the algebra
+    got = model_nuisance(r, inner, offset, acc)
+    assert got.d_inertia == pytest.approx(0.7, rel=1e-3)
+    assert np.max(np.abs((r - got.correction)[inner])) < 1e-3 * np.max(np.abs(r))
+    # without the acceleration (friction measured, not taken from a force) the constant only
+    only = model_nuisance(r, inner, offset, None)
+    assert only.d_inertia == 0.0 and np.all(only.correction[offset == 0] == 0.0)
 
 
 def _maxwell_slip(x, k, alpha, Fs):
