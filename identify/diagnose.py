@@ -895,13 +895,6 @@ CURVE_MIN_GAIN = 0.1  # … and only if the model alone then leaves this much le
 REFIT_NFEV_FROM = 20  # least-squares steps of a refit that starts from another's solution (each step simulates)
 
 
-def engine_gap(engine: Engine, r: TransitionRefit, mask: np.ndarray) -> np.ndarray:
-    """The residual of a refit (``refit_transition``) beside the engine's nuisance fitted on ``mask``."""
-    engine.set_base(r.params)
-    m = engine.predict(r.g, r.k0, r.entries)
-    return engine.c.measured - m - engine.nuisance(engine.c.measured - m, mask, m)
-
-
 def curve_groups(params: FrictionParams, refit_curve: bool) -> np.ndarray:
     """The group of each segment of a piecewise-linear F_d whose rise ``refit_transition``
     scales by one factor: every segment its own up to CURVE_GROUPS_MAX segments, else that many
@@ -1563,16 +1556,20 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     engine.free, engine.free_inertia = None, True
     try:
         alone = refit_transition(engine, base_params, prior_terms, prior_u, allm)
-        refit_curve = s.refit_curve and base_params.model == "leuven" and refit_length(base_params, True) > REFIT_BASE_U
-        if refit_curve:
+        nc = refit_length(base_params, True) - REFIT_BASE_U if s.refit_curve and base_params.model == "leuven" else 0
+        refit_curve = False
+        if nc:
             # the curve's segments are reshaped only where that pays clearly (CURVE_MIN_GAIN): a
             # curve that already fits stays as the file has it, so the decision is not moved by a
             # reshaping the data do not ask for
-            nc = refit_length(base_params, True) - REFIT_BASE_U
             shaped = refit_transition(engine, base_params, prior_terms, prior_u, allm, refit_curve=True,
                                       start=np.concatenate([alone.u[:REFIT_BASE_U], np.zeros(nc),
                                                             alone.u[REFIT_BASE_U:]]), max_nfev=REFIT_NFEV_FROM)
-            gap_plain, gap_shaped = (_rms(engine_gap(engine, r, allm)[allm]) for r in (alone, shaped))
+            gaps = []
+            for r in (alone, shaped):
+                engine.set_base(r.params)
+                gaps.append(_rms((meas - fit_result(engine, r.g, r.k0, r.entries, r.u, allm).pred)[allm]))
+            gap_plain, gap_shaped = gaps
             refit_curve = gap_shaped < (1.0 - CURVE_MIN_GAIN) * gap_plain
             cmp_.notes.append(f"the transition curve's segments refitted to the whole record: the model alone leaves "
                               f"{gap_shaped:.3g} against {gap_plain:.3g} with the file's shape — "
@@ -1581,7 +1578,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 alone = shaped
     finally:
         engine.free, engine.free_inertia = free, False
-    # (without the free curve, refitted once more with the inertia held, as the decision compares)
+    # then beside the free steady curve, as the decision compares (without it, with the inertia held)
     base_refit = refit_transition(engine, base_params, prior_terms, prior_u, allm, start=alone.u,
                                   refit_curve=refit_curve, max_nfev=REFIT_NFEV_FROM)
     base_params = base_refit.params
@@ -1728,8 +1725,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         scored.append(refit.pred)
         fits.append((list(cur_terms), refit.u))
     say(0.95, "refitting the model that is written (without the free steady curve)")
-    # the model written is refitted from the model as given, without the free steady curve: the
-    # alternative's own n, σ1 and S(v) leaned on that curve (its free inertia, its level at rest)
+    # the model written is refitted from the model as given, without the free steady curve, its first
+    # step from the base refitted as the model alone: the alternative's own n, σ1 and S(v) leaned
+    # on that curve (its free inertia, its level at rest)
     written = written_fits(engine, params.replace(effects=()), fits, refit_curve=refit_curve,
                            start=alone.u if len(alone.u) else None)
     (null, _), (final, final_base) = written[0], written[-1]
@@ -1739,14 +1737,13 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             st["params"] = dict(wf.entries[-1]["params"])
         step_preds.append(wf.pred)
     steps[1]["label"] = f"alternative: level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
-    curve_refitted = params.model == "leuven" and refit_curve
     if params.model == "leuven":
         levels = [getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
                   for sd in ("positive", "negative") for k in ("Fs", "Fc")]
         cmp_.notes.append(f"the model written (every step) refits, besides the level, the stiffness and the effects: "
                           f"n {params.n:.3g} → {final_base.n:.3g}, σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, "
                           f"the S(v) levels ×{min(levels):.3f} … ×{max(levels):.3f}"
-                          + (", the transition curve's segments" if curve_refitted else "")
+                          + (", the transition curve's segments" if refit_curve else "")
                           + ("" if named else " (nothing named: the parameter file is left as it was)"))
     if cmp_.inertia is not None:
         # the gaps of the model written leave eq. (8)'s I free beside it, so that an inertia off in
@@ -1775,7 +1772,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                              + (f", {', '.join(held)} held with them" if held else "") + f"; level ×{final.g:.4g}, "
                              f"presliding stiffness ×{final.k0:.4g}, n {params.n:.3g} → {final_base.n:.3g}, "
                              f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, the S(v) levels"
-                             + (", the transition curve's segments" if curve_refitted else "")
+                             + (", the transition curve's segments" if refit_curve else "")
                              + f" refitted by output error in {cmp_.space}")
         new_params = bake(final_base.replace(effects=()), final.g, final.k0).replace(
             effects=tuple(_clean_entry(e, cmp_) for e in final.entries), uncertainty=unc, provenance=prov)
@@ -1800,14 +1797,15 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list, refit_curve: 
     """The model that goes into the parameter file at every step, refitted to the recording
     alone (the free steady curve of the alternative helps decide, it is not part of the
     model): from ``base``, n, σ1, the S(v) levels (with ``refit_curve``, the curve's segments),
-    the level g, stiffness κ0 and that step's effects (``refit_transition``). Every step is refitted in full, so each gap is the best the
-    model does with those effects and the gain of a step is not held down by a base tuned
-    without its effect. A step starts where the one before ended, its new effect where the
-    decision's fit left it; the first from ``start`` (a whole solution vector: the same base and
-    the file's own effects refitted as the model alone, before the alternative's free curve was
-    added — its stiffness and curve segments were fitted together). The gaps are of friction
-    taken from an applied force with the inertia refitted beside the model (``model_nuisance``;
-    not written). Returns (FitResult, refitted base) per step."""
+    the level g, stiffness κ0 and that step's effects (``refit_transition``). Every step is
+    refitted in full, so each gap is the best the model does with those effects and the gain of
+    a step is not held down by a base tuned without its effect. A step starts where the one
+    before ended, its new effect where the decision's fit left it; the first from ``start`` (a
+    whole solution vector: the same base and the file's own effects refitted as the model
+    alone, before the alternative's free curve was added — its stiffness and curve segments were
+    fitted together). The gaps are of friction taken from an applied force with the inertia
+    refitted beside the model (``model_nuisance``; not written). Returns (FitResult, refitted
+    base) per step."""
     engine.free = None
     engine.free_inertia = True
     mask = engine.scored
