@@ -175,7 +175,8 @@ def cmd_diagnose(args) -> int:
     try:
         from ..identify.diagnose import Settings
 
-        d = diagnose(rec, params, progress=_progress, settings=Settings(space=args.space))
+        d = diagnose(rec, params, progress=_progress, settings=Settings(space=args.space,
+                                                                       must_settle=args.require_settling))
     except FrictionError as e:
         print(file=sys.stderr)
         raise UserError(f"diagnose: {e}") from None
@@ -381,6 +382,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="where a recording with an applied force (no friction column) is compared: friction taken "
                         "from eq. (8) averaged over a few samples (default), or position by output error of the "
                         "plant simulated in short windows")
+    d.add_argument("--require-settling", action="store_true",
+                   help="do not name an effect whose change does not settle within the session (its saturation "
+                        "scale at the bound, e.g. a softening's n_c), since a trend along the session's schedule "
+                        "would look the same: report it as seen, not named (default: named, with that caveat)")
     d.set_defaults(func=cmd_diagnose)
 
     sm = sub.add_parser("samples", help="list the sample recordings shipped with the package, or copy them out")

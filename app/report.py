@@ -32,6 +32,11 @@ def diagnosis_html(d, source: str) -> str:
             [[" / ".join(c["effects"]), f"{c['correlation']:.2f}", " vs ".join(f"{100 * g:.1f} %" for g in c["gains"]),
               c["experiment"]] for c in d.confounded],
             ["candidates", "correlation of corrections", "held-out gains", "experiment that separates them"])
+    if d.unsettled:
+        conf += "<h2>Seen, not named</h2>" + _table(
+            [[c["name"], f"{100 * c['heldout_gain']:.1f} %", f"{c['folds_improved']}/{c['folds_informative']}",
+              c["unsettled"]] for c in d.unsettled],
+            ["candidate", "held-out gain", "folds", "why it is not named"])
     return f"""<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>{title}</title>
 <style>body{{font-family:Arial,sans-serif;max-width:1100px;margin:2em auto;}} pre{{background:#f6f6f6;padding:1em;}}

@@ -31,7 +31,9 @@ out-of-sample evidence, add it, refit, look again.
    it changes the prediction at all, and the pooled held-out RMS by ``min_gain`` — over the
    record and where its physics shows (steady gross sliding for a friction factor, the
    transitions after reversals for a stiffness effect). A BIC with the effective number of
-   samples is reported as a second line.
+   samples is reported as a second line. A candidate whose saturation scale ends at its upper
+   bound (a softening's n_c) has not been seen to settle within the session: the report says
+   so, and with ``Settings.must_settle`` it is listed as seen, not named (``Term.unsettled``).
 5. **Confounding.** Two passing candidates whose corrections are alike (correlation above
    ``confound_corr``) and neither of which predicts clearly better out of sample are reported
    as confounded — each one's evidence and the experiment that would separate them — and
@@ -75,6 +77,7 @@ class Settings:
     rate_nuisance: bool = True  # a stiffness effect is judged beside a stiffness varying with speed (rate_alternative)
     refit_curve: bool = True  # the alternative reshapes a piecewise-linear F_d segment by segment (refit_transition)
     space: str = "friction"  # "position": a force-driven recording compared by output error in position
+    must_settle: bool = False  # True: an effect with a saturation scale is named only if seen to settle (``Term.unsettled``)
     candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
 
 
@@ -471,6 +474,19 @@ class Term:
     name: str
     fixed: dict
     free: tuple  # (param name, transform "lin"|"log", lo, hi) in transformed coordinates
+    settles: str | None = None  # the free scale over which the effect must be seen to settle (see ``unsettled``)
+
+    def unsettled(self, u: np.ndarray) -> bool:
+        """Whether the term's part ``u`` of a fit leaves its ``settles`` scale at the upper
+        bound: the change does not settle within the session, and a trend along the session's
+        schedule (its time, its speed levels in order) would look the same."""
+        if self.settles is None:
+            return False
+        j = [f[0] for f in self.free].index(self.settles)
+        return bool(u[j] >= self.free[j][3] - SETTLE_TOL)
+
+
+SETTLE_TOL = math.log(1.02)  # a scale within 2 % of its upper bound is at it
 
 
 def presliding_range(params: FrictionParams) -> float:
@@ -513,8 +529,11 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
                     # n_c ≥ 3: a change complete within a couple of reversals is a constant
                     # stiffness factor, which the alternative's κ0 already holds; n_c ≤ half the
                     # reversals: a change still far from saturating at the session's end is a
-                    # trend in the reversal count, which a schedule confounds with time and speed
-                    (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(3.0), math.log(max(nrev / 2, 3.5)))))
+                    # trend in the reversal count, which a schedule confounds with time and speed; one
+                    # fitted at that bound has not been seen settling, and the report says so
+                    # (``Term.unsettled``; with ``Settings.must_settle`` it is not named)
+                    (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(3.0), math.log(max(nrev / 2, 3.5)))),
+                    settles="n_c")
     if name == "rate_stiffness":
         st = cmp_.params.stribeck
         v_ref = min(abs(st.positive.vs), abs(st.negative.vs))
@@ -1143,6 +1162,7 @@ class Evidence:
     folds_where: str | None = None  # folds improved / informative there
     against: Alternative | None = field(repr=False, default=None)  # the alternative it is judged against
     rms_alt: float = 0.0  # that alternative's in-sample RMS
+    unsettled: str | None = None  # why its change is not seen settling within the session (``Term.unsettled``)
 
     @property
     def beside(self) -> str | None:
@@ -1172,10 +1192,15 @@ class Evidence:
             return self.in_sample_gain
         return float(1.0 - math.sqrt(np.sum(self.heldout_sse) / max(np.sum(self.null_sse), 1e-300)))
 
-    def passes(self, s: Settings) -> bool:
+    def evident(self, s: Settings) -> bool:
+        """Better held out in most informative folds, by ``min_gain`` pooled, and where its physics shows."""
         k = self.folds_informative
         return bool(self.cross_validated and k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain
                     and self.not_where_it_shows is None)
+
+    def passes(self, s: Settings) -> bool:
+        """Evident, and (``Settings.must_settle``) seen to settle within the session."""
+        return self.evident(s) and (self.unsettled is None or not s.must_settle)
 
     def as_dict(self, s: Settings) -> dict:
         return {"name": self.name, "description": EFFECTS[self.name].description, "params": self.params,
@@ -1183,7 +1208,8 @@ class Evidence:
                 "heldout_gain": self.heldout_gain, "folds_improved": self.folds_improved,
                 "folds_informative": self.folds_informative, "delta_bic": self.delta_bic, "passes": self.passes(s),
                 "not_where_it_shows": self.not_where_it_shows, "where": self.where, "gain_where": self.gain_where,
-                "folds_where": self.folds_where, "beside": self.beside,
+                "folds_where": self.folds_where, "beside": self.beside, "unsettled": self.unsettled,
+                "evident": self.evident(s),
                 "significant": False, "refitted": True}
 
 
@@ -1286,6 +1312,14 @@ class Diagnosis:
         return EFFECTS[self.effect].description if self.effect else None
 
     @property
+    def unsettled(self) -> list:
+        """With ``Settings.must_settle``: the last round's candidates with held-out evidence that
+        were not named because their change does not settle within the session (``Term.unsettled``)."""
+        if not self.settings.must_settle:
+            return []  # such a candidate is named, with that caveat in the notes
+        return [c for c in self.candidates if c.get("unsettled") and c.get("evident")]
+
+    @property
     def effect_params(self) -> dict | None:
         # steps: [model as given, base refit, + first effect, + second effect, …]
         return self.steps[2]["params"] if self.effects else None
@@ -1295,9 +1329,11 @@ class Diagnosis:
             "effects": list(self.effects), "effect": self.effect, "effect_params": self.effect_params,
             "space": self.space, "noise": self.noise, "rms_before": self.rms_before, "rms_after": self.rms_after,
             "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
-            "confounded": self.confounded, "candidates": self.candidates, "notes": list(self.notes),
+            "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled],
+            "candidates": self.candidates, "notes": list(self.notes),
             "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
-                         "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr},
+                         "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr,
+                         "must_settle": self.settings.must_settle},
         }
 
     def text(self) -> str:
@@ -1305,8 +1341,14 @@ class Diagnosis:
         L = []
         if self.effects:
             L.append("Missing effects named (out-of-sample evidence): " + ", ".join(self.effects))
+        elif self.unsettled:
+            L.append("No missing effect named: what improves the held-out prediction does not settle within the "
+                     "session (required here).")
         else:
             L.append("No missing effect named: nothing improves the held-out prediction in most folds.")
+        for c in self.unsettled:
+            L.append(f"Seen, not named: {c['name']} improves the held-out prediction by {100 * c['heldout_gain']:.1f} % "
+                     f"(folds {c['folds_improved']}/{c['folds_informative']}), but {c['unsettled']}.")
         for c in self.confounded:
             a, b = c["effects"]
             L.append(f"Confounded: {a} and {b} explain the same part of the residual "
@@ -1338,6 +1380,8 @@ class Diagnosis:
             if c.get("where"):
                 why = (f"  in {c['where']}: {-100 * c['gain_where']:+.1f} %, folds {c['folds_where']}"
                        + (" — not enough" if c.get("not_where_it_shows") else ""))
+            if c.get("unsettled"):
+                why += f"  — {c['unsettled']}"
             beside = f"  (beside {c['beside']})" if c.get("beside") else ""
             if not c.get("cross_validated", True):
                 L.append(f" {mark} {c['name']:20s} in-sample {-100 * c['reduction']:+5.1f} %: under half the threshold, "
@@ -1546,7 +1590,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     for e in prior0:
         if e["name"] in EFFECTS and e["name"] != "presliding_stiffness":
             tm = _terms_for(e["name"], cmp_)
-            tm = Term(tm.name, {k: e["params"][k] for k in tm.fixed}, tm.free)
+            tm = Term(tm.name, {k: e["params"][k] for k in tm.fixed}, tm.free, tm.settles)
             prior_terms.append(tm)
             prior_u = np.concatenate([prior_u, _entry_to_u(tm, e["params"])])
     # first as the model alone (its memory's constant and inertia free, as the model written), then
@@ -1666,9 +1710,15 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 folds_there = f"{int(np.sum((sp < npre) & inf_p))}/{int(inf_p.sum())}"
                 if not (inf_p.sum() >= 2 and np.sum((sp < npre) & inf_p) > inf_p.sum() / 2 and gain_there >= s.min_gain):
                     failed_where = where_name
+            unsettled = None
+            if term.unsettled(fr.u[len(fr.u) - len(term.free):]):
+                bound = math.exp(term.free[[f[0] for f in term.free].index(term.settles)][3])
+                unsettled = (f"its {term.settles} is at its bound {bound:.3g}: the change does not settle within the "
+                             f"session, and a trend along the session's schedule (time, speed levels in order) "
+                             f"would look the same. To tell: {EFFECTS[name].separated_by}")
             evid.append(Evidence(name, fr.entries[-1]["params"], rms_c, sse, null_sse, informative, dbic,
                                  fr.pred - alt.fit.pred, fr, failed_where, where_name, gain_there, folds_there,
-                                 alt, rms_a))
+                                 alt, rms_a, unsettled))
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         cands_out = [e.as_dict(s) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
         winner = None
@@ -1708,6 +1758,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # the model goes on as the one that was cross-validated: an effect judged beside a
         # stiffness varying with speed keeps it (held, not named: on clean recordings it takes up
         # how the transition's dependence on speed differs from eq. (5)), with the κ0 refitted there
+        if winner.unsettled:
+            cmp_.notes.append(f"{winner.name} is named, but {winner.unsettled} (Settings.must_settle, `diagnose "
+                              f"--require-settling`, reports it as seen and does not name it)")
         if winner.beside:
             cmp_.notes.append(f"{winner.name} was judged beside {winner.beside} (rate_stiffness, held with it in "
                               f"the model written, not named)")

@@ -181,6 +181,32 @@ def test_a_stiffness_that_follows_the_speed_is_not_credited_to_softening():
     assert "cyclic_softening" not in d.effects, d.text()
 
 
+def test_a_stiffness_trend_that_never_settles_is_flagged_and_not_named_when_settling_is_required():
+    # a presliding spring that loses stiffness in proportion to the time run (wear through the
+    # whole session, never settling) on a linear stage whose sweep orders its speeds in time: a
+    # softening with the reversals fitted to it runs its n_c to the bound. By default it is
+    # named with that caveat in the notes; with must_settle (diagnose --require-settling) it is
+    # not named, and the report says it was seen and why
+    from leuven_friction.identify.diagnose import Settings
+    from synth import recordings as R
+    from synth.hidden import SUITE_RATE
+
+    kind, seed = "linear_stage", 3002
+    probe, _ = R.make_recording(kind, seed, rate=SUITE_RATE[kind])
+    T = float(probe["Time [s]"].iloc[-1])
+    df, truth = R.make_recording(kind, seed, rate=SUITE_RATE[kind],
+                                 stiffness_modifier=lambda c: 1.0 - 0.4 * np.clip(c.t / T, 0.0, 1.0))
+    rec, base = to_recording(df), oracle_params(truth)
+    d = diagnose(rec, base)
+    assert "cyclic_softening" in d.effects and "cyclic_softening is named, but its n_c is at its bound" in d.text(), \
+        d.text()
+    strict = diagnose(rec, base, settings=Settings(must_settle=True))
+    assert "cyclic_softening" not in strict.effects, strict.text()
+    assert [c["name"] for c in strict.unsettled] == ["cyclic_softening"], strict.text()
+    assert "Seen, not named: cyclic_softening" in strict.text()
+    assert strict.summary()["unsettled"] == ["cyclic_softening"]
+
+
 def test_fit_then_diagnose_on_fresh_controls_reaches_the_generators_own_base():
     # the user's path on recordings nobody here made: `fit` on the recording, then `diagnose`
     # with what it wrote (a transition curve the fit identified from a few presliding branches,
