@@ -476,14 +476,18 @@ class Term:
     free: tuple  # (param name, transform "lin"|"log", lo, hi) in transformed coordinates
     settles: str | None = None  # the free scale over which the effect must be seen to settle (see ``unsettled``)
 
-    def unsettled(self, u: np.ndarray) -> bool:
-        """Whether the term's part ``u`` of a fit leaves its ``settles`` scale at the upper
-        bound: the change does not settle within the session, and a trend along the session's
-        schedule (its time, its speed levels in order) would look the same."""
+    def unsettled(self, u: np.ndarray) -> str | None:
+        """Why the term's part ``u`` of a fit is not seen to settle — its ``settles`` scale at
+        the upper bound: a trend along the session's schedule (its time, its speed levels in
+        order) would look the same — or None."""
         if self.settles is None:
-            return False
+            return None
         j = [f[0] for f in self.free].index(self.settles)
-        return bool(u[j] >= self.free[j][3] - SETTLE_TOL)
+        if u[j] < self.free[j][3] - SETTLE_TOL:
+            return None
+        return (f"its {self.settles} is at its bound {math.exp(self.free[j][3]):.3g}: the change does not settle "
+                f"within the session, and a trend along the session's schedule (time, speed levels in order) would "
+                f"look the same. To tell: {EFFECTS[self.name].separated_by}")
 
 
 SETTLE_TOL = math.log(1.02)  # a scale within 2 % of its upper bound is at it
@@ -695,11 +699,9 @@ class FreeSteadyCurve:
 
 
 def memory_constant(r: np.ndarray, mask: np.ndarray, offset: np.ndarray | None) -> np.ndarray:
-    """The constant of ``initial_memory`` fitted to the residual ``r`` on ``mask``, over every sample."""
-    if offset is None:
-        return np.zeros_like(r)
-    on = mask & (offset > 0)
-    return (float(np.mean(r[on])) if on.any() else 0.0) * offset
+    """The constant of ``initial_memory`` fitted to the residual ``r`` on ``mask``, over every
+    sample (``model_nuisance`` without the inertia)."""
+    return model_nuisance(r, mask, offset, None).correction
 
 
 @dataclass(frozen=True)
@@ -783,11 +785,12 @@ class Engine:
         ``idx`` (a least-squares step's thinned set: ~20 coefficients need no more), at those
         samples."""
         if self.free is None:
-            if self.c.memory_offset is None and not (self.free_inertia and self.c.acceleration is not None):
+            off = self.c.memory_offset
+            acc = self.c.acceleration if self.free_inertia else None
+            if off is None and acc is None:
                 return r[idx]
-            acc = self.c.acceleration[idx] if (self.free_inertia and self.c.acceleration is not None) else None
-            off = None if self.c.memory_offset is None else self.c.memory_offset[idx]
-            return r[idx] - model_nuisance(r[idx], np.ones(len(idx), bool), off, acc).correction
+            return r[idx] - model_nuisance(r[idx], np.ones(len(idx), bool), None if off is None else off[idx],
+                                           None if acc is None else acc[idx]).correction
         key = self._thin_masks.get(id(idx))
         if key is None or key[0] is not idx:
             m = np.zeros(len(r), dtype=bool)
@@ -1710,15 +1713,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 folds_there = f"{int(np.sum((sp < npre) & inf_p))}/{int(inf_p.sum())}"
                 if not (inf_p.sum() >= 2 and np.sum((sp < npre) & inf_p) > inf_p.sum() / 2 and gain_there >= s.min_gain):
                     failed_where = where_name
-            unsettled = None
-            if term.unsettled(fr.u[len(fr.u) - len(term.free):]):
-                bound = math.exp(term.free[[f[0] for f in term.free].index(term.settles)][3])
-                unsettled = (f"its {term.settles} is at its bound {bound:.3g}: the change does not settle within the "
-                             f"session, and a trend along the session's schedule (time, speed levels in order) "
-                             f"would look the same. To tell: {EFFECTS[name].separated_by}")
             evid.append(Evidence(name, fr.entries[-1]["params"], rms_c, sse, null_sse, informative, dbic,
                                  fr.pred - alt.fit.pred, fr, failed_where, where_name, gain_there, folds_there,
-                                 alt, rms_a, unsettled))
+                                 alt, rms_a, term.unsettled(fr.u[len(fr.u) - len(term.free):])))
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         cands_out = [e.as_dict(s) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
         winner = None
