@@ -1322,6 +1322,13 @@ class Diagnosis:
             return []  # such a candidate is named, with that caveat in the notes
         return [c for c in self.candidates if c.get("unsettled") and c.get("evident")]
 
+    def not_named(self) -> list:
+        """What the evidence shows but the diagnosis does not name, one short line each: an
+        effect seen that does not settle within the session (with ``Settings.must_settle``) and
+        pairs of effects confounded with each other."""
+        return ([f"{c['name']} seen, not named (its change does not settle within the session)" for c in self.unsettled]
+                + [f"{c['effects'][0]} and {c['effects'][1]} confounded" for c in self.confounded])
+
     @property
     def effect_params(self) -> dict | None:
         # steps: [model as given, base refit, + first effect, + second effect, …]
@@ -1376,7 +1383,9 @@ class Diagnosis:
                      + tail)
         L.append(f"Candidates, last round (blocked CV: {self.settings.folds} folds of "
                  f"{self.settings.blocks_per_fold} contiguous blocks; named if better held out in most informative "
-                 f"folds and ≥ {100 * self.settings.min_gain:.0f} % pooled):")
+                 f"folds and ≥ {100 * self.settings.min_gain:.0f} % pooled"
+                 + ("; settling required: one whose change does not settle within the session is seen, not named"
+                    if self.settings.must_settle else "") + "):")
         for c in self.candidates:
             mark = "*" if c["significant"] else ("+" if c["passes"] else " ")
             why = ""
@@ -1441,6 +1450,44 @@ def steady_sliding(cmp_: Comparison) -> np.ndarray:
     ok[w:] &= np.abs(v[w:] - v[:-w]) <= tol[w:]
     ok[:-w] &= np.abs(v[:-w] - v[w:]) <= tol[:-w]
     return gross_sliding(cmp_) & ok
+
+
+@dataclass(frozen=True)
+class SpeedOrder:
+    """How the speeds of steady sliding follow time through a session (``speed_order``)."""
+
+    holds: int  # visits of one speed in one direction
+    rho: float  # |Spearman's rank correlation| of their speeds with their times (nan: too few holds)
+
+
+SPEED_ORDER_RHO = 0.8  # |ρ| from which speeds in order of time confound a drift with S(v)
+SAME_SPEED = math.log(1.25)  # consecutive stretches this close in speed, same direction: one hold
+
+
+def speed_order(time: np.ndarray, velocity: np.ndarray, steady: np.ndarray, min_samples: int = 10) -> SpeedOrder:
+    """|Spearman's ρ| between the time and the speed |v| of each hold of steady sliding (each
+    hold counted once, however long): a sweep that visits its speed levels in order has |ρ|
+    near 1, and then S(v)'s shape fitted to it takes up any slow change in time. A hold is a
+    run of consecutive stretches of steady sliding in one direction at speeds within 25 % of
+    each other (at a slow level an encoder's steps break the steadiness into fragments)."""
+    edges = np.flatnonzero(np.diff(np.r_[0, steady.astype(np.int8), 0]))
+    holds = []  # [samples, Σ samples·t, Σ samples·ln|v|, sign]
+    for a, b in zip(edges[::2], edges[1::2]):
+        n, sg = b - a, np.sign(np.median(velocity[a:b]))
+        ls = math.log(max(float(np.median(np.abs(velocity[a:b]))), 1e-300))
+        if holds and holds[-1][3] == sg and abs(holds[-1][2] / holds[-1][0] - ls) < SAME_SPEED:
+            holds[-1][0] += n
+            holds[-1][1] += n * float(np.mean(time[a:b]))
+            holds[-1][2] += n * ls
+        else:
+            holds.append([n, n * float(np.mean(time[a:b])), n * ls, sg])
+    holds = [h for h in holds if h[0] >= min_samples]
+    if len(holds) < 4:
+        return SpeedOrder(len(holds), math.nan)
+    t = np.array([h[1] / h[0] for h in holds])
+    spd = np.array([h[2] / h[0] for h in holds])
+    rt, rs = np.argsort(np.argsort(t)), np.argsort(np.argsort(spd))
+    return SpeedOrder(len(holds), _corr(rt.astype(float), rs.astype(float)))
 
 
 def regime_masks(cmp_: Comparison) -> dict:
@@ -1647,6 +1694,14 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # a session starts with presliding). The load is measured, not made by the motion: a load
     # effect is judged wherever the load varies.
     sliding = steady_sliding(cmp_)
+    order = speed_order(cmp_.time, cmp_.velocity, sliding & allm)
+    if "time_drift" in s.candidates and abs(order.rho) >= SPEED_ORDER_RHO:
+        # a drift in time is then a slope of S(v) as well: the base's S(v) refit and the free
+        # steady curve the decision compares beside take part of it up before time_drift is tried
+        cmp_.notes.append(f"the session slides at speeds in order of time (|Spearman ρ| {order.rho:.2f} over "
+                          f"{order.holds} holds of steady sliding): a slow change in time and the shape of "
+                          f"S(v) are confounded here, and part of a drift is taken as S(v). To tell: visit the "
+                          f"speed levels in a shuffled order, or repeat the first ones at the session's end")
     must_show = {nm: (transition if EFFECTS[nm].acts_on == "stiffness" else sliding) for nm in EFFECTS
                  if nm != "normal_load"}
     regimes_m = regime_masks(cmp_)

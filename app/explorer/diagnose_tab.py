@@ -33,6 +33,11 @@ class DiagnoseTab:
         with gui.add_folder("Diagnose", order=3.0):
             self.gui_run = gui.add_button("Diagnose", disabled=True,
                                           hint="find the effect the current model misses in the uploaded data")
+            # Settings.must_settle (``diagnose --require-settling``): read when a diagnosis starts
+            self.gui_settle = gui.add_checkbox("Require settling", initial_value=False,
+                                               hint="an effect whose change does not settle within the session (a "
+                                                    "softening still going at the end) is listed as seen, not named: "
+                                                    "a trend along the session's schedule would look the same")
             self.gui_cancel = gui.add_button("Cancel diagnosis", visible=False, color="red")
             self.gui_progress = gui.add_progress_bar(0.0, visible=False)
             self.gui_status = gui.add_markdown("")
@@ -76,7 +81,7 @@ class DiagnoseTab:
         self.ctx.notify("Diagnosis failed", f"{self.ctx.session.recording_name}: {type(e).__name__}: {e}", "red")
 
     def _diagnose(self) -> None:
-        from ...identify.diagnose import diagnose
+        from ...identify.diagnose import Settings, diagnose
 
         ctx = self.ctx
         rec = ctx.recording
@@ -92,7 +97,8 @@ class DiagnoseTab:
             self.gui_status.content = f"Diagnosing **{name}**: {msg} — {100 * frac:.0f} %"
 
         try:
-            d = diagnose(rec, before.replace(model="leuven"), progress=self.job.progress_for(report))
+            d = diagnose(rec, before.replace(model="leuven"), progress=self.job.progress_for(report),
+                         settings=Settings(must_settle=bool(self.gui_settle.value)))
         except Cancelled:
             self._busy(False)
             self.gui_status.content = "Diagnosis cancelled."
@@ -122,6 +128,15 @@ class DiagnoseTab:
                     + "; ".join(f"{k} {r['rms_before']:.3g} → {r['rms_after']:.3g}" for k, r in d.regimes.items()))
             self.propose(Proposal(f"diagnosis: {named}", d.params_after.replace(model=before.model), text,
                                   d.rms_before, d.rms_after))
-            self.gui_status.content = f"Found **{named}**: see the proposal."
-        else:
-            self.gui_status.content = "No significant missing effect: the model explains the data (nothing proposed)."
+        self.gui_status.content = status_line(d)
+
+
+def status_line(d) -> str:
+    """The verdict of a diagnosis ``d`` under the button: what is named (and proposed), what is
+    seen but not named, or that nothing is."""
+    others = d.not_named()
+    if d.effects:
+        return f"Found **{', '.join(d.effects)}**: see the proposal." + (f" Also: {'; '.join(others)}." if others else "")
+    if others:
+        return f"Nothing named: {'; '.join(others)} (the Diagnose tab has the evidence)."
+    return "No significant missing effect: the model explains the data (nothing proposed)."

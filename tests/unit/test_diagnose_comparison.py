@@ -15,6 +15,7 @@ from leuven_friction.identify.diagnose import (
     gross_sliding,
     mean_acceleration,
     model_nuisance,
+    speed_order,
     steady_sliding,
 )
 from scipy.ndimage import uniform_filter1d
@@ -83,6 +84,24 @@ def test_free_steady_curve_leaves_a_change_between_two_visits_of_one_speed():
     half = np.arange(n) < n // 2
     pred = curve.fit(drift, half)
     assert np.sqrt(np.mean((drift - pred)[~half] ** 2)) > 0.3
+
+
+def test_speed_order_tells_a_sweep_in_order_from_one_that_returns():
+    # a robot joint's sweep: each level forward then back, slowest first. Spearman's ρ over the
+    # holds (each counted once) is 1 up to the ties of ± one level; the same levels visited
+    # forward and then backward (a V in time) have ρ ≈ 0; three holds are too few to judge
+    levels = [0.01, 0.03, 0.1, 0.3, 1.0, 3.0]
+    sweep = _holds([s * lv for lv in levels for s in (1, -1)])
+    t = np.arange(len(sweep)) * 1e-3
+    up = speed_order(t, sweep, sweep != 0)
+    assert up.holds == 12 and up.rho > 0.95
+    vee = _holds([s * lv for lv in levels + levels[::-1] for s in (1, -1)])
+    back = speed_order(np.arange(len(vee)) * 1e-3, vee, vee != 0)
+    assert back.holds == 24 and abs(back.rho) < 0.2
+    # a hold shorter than min_samples is not a stretch of steady sliding at one speed
+    few = _holds([0.1, -0.3, 1.0])
+    assert math.isnan(speed_order(np.arange(len(few)) * 1e-3, few, few != 0).rho)
+    assert speed_order(t, sweep, sweep != 0, min_samples=401).holds == 0
 
 
 def test_the_level_at_rest_is_a_free_scale_of_the_model_there():
