@@ -5,7 +5,7 @@ with hidden drift and a robot joint with a hidden load dependence, from ``synth/
 timed; a baseline (one displacement simulation of the same recording) is timed in the same
 process so the ratio travels between machines.
 
-``python -m bench.diagnosis --suite [--quick] [--fit-base] [--require-settling] [--start SEED] [--out FILE]``: the hidden-effect suite — every
+``python -m bench.diagnosis --suite [--quick] [--fit-base] [--no-require-settling] [--start SEED] [--out FILE]``: the hidden-effect suite — every
 case diagnosed from its CSV with the generator's own friction (no effect) seen through the
 Leuven model as the base — and the confusion matrix true × named.
 """
@@ -17,7 +17,7 @@ import sys
 import time
 
 
-def _diagnose_case(kind, seed, effects, base="oracle", must_settle=False):
+def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True):
     from leuven_friction.identify.diagnose import Settings, diagnose
     from synth.hidden import SUITE_RATE, make_case, oracle_params, to_recording
 
@@ -94,7 +94,7 @@ def format_matrix(conf) -> str:
 
 
 def run_suite(quick: bool = False, out: str | None = None, progress=print, base: str = "oracle",
-              must_settle: bool = False, start: int = 1000) -> dict:
+              must_settle: bool = True, start: int = 1000) -> dict:
     """Diagnose every case of the suite; ``start`` is its first seed (the README's numbers are
     from 1000; another start draws other machines, schedules and effects, none of them seen
     while the decision rules were set)."""
@@ -164,7 +164,7 @@ if __name__ == "__main__":
     if "--suite" in args:
         out = args[args.index("--out") + 1] if "--out" in args else None
         res = run_suite("--quick" in args, out, base="fit" if "--fit-base" in args else "oracle",
-                        must_settle="--require-settling" in args,
+                        must_settle="--no-require-settling" not in args,
                         start=int(args[args.index("--start") + 1]) if "--start" in args else 1000)
         print(format_matrix(res["confusion"]))
         print(json.dumps(res["scores"], indent=1))

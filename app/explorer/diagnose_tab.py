@@ -34,7 +34,7 @@ class DiagnoseTab:
             self.gui_run = gui.add_button("Diagnose", disabled=True,
                                           hint="find the effect the current model misses in the uploaded data")
             # Settings.must_settle (``diagnose --require-settling``): read when a diagnosis starts
-            self.gui_settle = gui.add_checkbox("Require settling", initial_value=False,
+            self.gui_settle = gui.add_checkbox("Require settling", initial_value=True,
                                                hint="an effect whose change does not settle within the session (a "
                                                     "softening still going at the end) is listed as seen, not named: "
                                                     "a trend along the session's schedule would look the same")

@@ -134,13 +134,16 @@ def test_model_written_closes_the_gap_on_a_robot_joint():
     assert d.params_after.sigma1 != d.params_before.sigma1 and "σ1" in d.params_after.provenance["diagnosis"]
 
 
-def test_hidden_effect_suite_sample_on_fresh_seeds_meets_the_targets():
+def test_hidden_effect_suite_sample_on_fresh_seeds_finds_the_effects_and_names_no_false_one():
     # a sample of the hidden-effect suite on seeds the suite does not use, chosen before the
     # run: each hidden effect once per kind of recording, and two controls per kind. Targets of
-    # the whole suite: the right effect named in ≥ 90 % of the cases, a false effect on ≤ 5 %
-    # of the controls. On a sample of 12 and 6 cases: at most two misses (at a 10 % miss rate
-    # three or more happen with probability 0.11, at 30 % with 0.75) and at most one false
-    # effect (at a 5 % rate two or more happen with probability 0.03).
+    # the whole suite: the right effect found in ≥ 90 % of the cases, a false effect named on
+    # ≤ 5 % of the controls. On a sample of 12 and 6 cases: at most two misses (at a 10 % miss
+    # rate three or more happen with probability 0.11, at 30 % with 0.75) and at most one false
+    # effect (at a 5 % rate two or more happen with probability 0.03). A softening whose n_c
+    # ends at its bound is found but not named (seen, not named: it does not settle within the
+    # session, the default policy, README), so it counts as found here, not as named; the
+    # friction factors, which have no such scale, must be named
     from bench.diagnosis import _diagnose_case
 
     effects = ("time_drift", "normal_load", "position_ripple")
@@ -158,8 +161,10 @@ def test_hidden_effect_suite_sample_on_fresh_seeds_meets_the_targets():
     for kind in kinds:
         rows.append(_diagnose_case(kind, seed, ("cyclic_softening",)))
         seed += 1
-    right = [r["expected"][0] in r["named"] for r in rows]
-    assert sum(right) >= len(rows) - 2, [(r["kind"], r["hidden"], r["named"]) for r in rows]
+    found = [r["expected"][0] in r["named"] + r["unsettled"] for r in rows]
+    assert sum(found) >= len(rows) - 2, [(r["kind"], r["hidden"], r["named"], r["unsettled"]) for r in rows]
+    named = [r["expected"][0] in r["named"] for r in rows if r["expected"][0] != "cyclic_softening"]
+    assert sum(named) >= len(named) - 2, [(r["kind"], r["hidden"], r["named"]) for r in rows]
     assert sum(bool(r["named"]) for r in controls) <= 1, [(r["kind"], r["named"]) for r in controls]
     # (the gap's shrink is not asserted: the ≥ 30 % target is missed for weak drifts and for
     # softenings in the suite, README)
@@ -181,12 +186,12 @@ def test_a_stiffness_that_follows_the_speed_is_not_credited_to_softening():
     assert "cyclic_softening" not in d.effects, d.text()
 
 
-def test_a_stiffness_trend_that_never_settles_is_flagged_and_not_named_when_settling_is_required():
+def test_a_stiffness_trend_that_never_settles_is_seen_and_not_named():
     # a presliding spring that loses stiffness in proportion to the time run (wear through the
     # whole session, never settling) on a linear stage whose sweep orders its speeds in time: a
-    # softening with the reversals fitted to it runs its n_c to the bound. By default it is
-    # named with that caveat in the notes; with must_settle (diagnose --require-settling) it is
-    # not named, and the report says it was seen and why
+    # softening with the reversals fitted to it runs its n_c to the bound. By default
+    # (must_settle) it is not named, and the report says it was seen and why; without
+    # (diagnose --no-require-settling) it is named with that caveat in the notes
     from leuven_friction.identify.diagnose import Settings
     from synth import recordings as R
     from synth.hidden import SUITE_RATE
@@ -197,16 +202,16 @@ def test_a_stiffness_trend_that_never_settles_is_flagged_and_not_named_when_sett
     df, truth = R.make_recording(kind, seed, rate=SUITE_RATE[kind],
                                  stiffness_modifier=lambda c: 1.0 - 0.4 * np.clip(c.t / T, 0.0, 1.0))
     rec, base = to_recording(df), oracle_params(truth)
-    d = diagnose(rec, base)
-    assert "cyclic_softening" in d.effects and "cyclic_softening is named, but its n_c is at its bound" in d.text(), \
-        d.text()
-    strict = diagnose(rec, base, settings=Settings(must_settle=True))
+    d = diagnose(rec, base, settings=Settings(must_settle=False))
+    assert "cyclic_softening" in d.effects and "its n_c is at its bound" in d.text(), d.text()
+    assert "cyclic_softening is named because settling is not required here" in d.text(), d.text()
+    strict = diagnose(rec, base)
     assert "cyclic_softening" not in strict.effects, strict.text()
     assert [c["name"] for c in strict.unsettled] == ["cyclic_softening"], strict.text()
     assert "Seen, not named: cyclic_softening" in strict.text()
     assert strict.summary()["unsettled"] == ["cyclic_softening"]
-    # the explorer's line under its Diagnose button (the "Require settling" box ticked) says so
-    # rather than "no missing effect"; by default it names the softening
+    # the explorer's line under its Diagnose button (its "Require settling" box ticked, as it
+    # starts) says so rather than "no missing effect"; with the box cleared it names the softening
     from leuven_friction.app.explorer.diagnose_tab import status_line
 
     assert status_line(strict).startswith("Nothing named: cyclic_softening seen, not named"), status_line(strict)
