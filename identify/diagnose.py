@@ -33,8 +33,9 @@ out-of-sample evidence, add it, refit, look again.
    transitions after reversals for a stiffness effect). A BIC with the effective number of
    samples is reported as a second line. A candidate whose saturation scale ends at its upper
    bound (a softening's n_c) has not been seen to settle within the session: it is listed as
-   seen, not named (``Term.unsettled``; ``Settings.must_settle``, the default: on recordings
-   nobody here made, naming it put a false softening on 15 of 80 controls, requiring it 3).
+   seen, not named (``Term.unsettled``; ``Settings.must_settle``, the default: over the
+   hidden-effect suite on two seed sets, with the oracle and the fitted base, naming it put a
+   false softening on 15 of 80 controls, requiring it on 3).
 5. **Confounding.** Two passing candidates whose corrections are alike (correlation above
    ``confound_corr``) and neither of which predicts clearly better out of sample are reported
    as confounded — each one's evidence and the experiment that would separate them — and
