@@ -383,8 +383,8 @@ def build_parser() -> argparse.ArgumentParser:
                         "from eq. (8) averaged over a few samples (default), or position by output error of the "
                         "plant simulated in short windows")
     d.add_argument("--require-settling", action=argparse.BooleanOptionalAction, default=True,
-                   help="do not name an effect whose change does not settle within the session (its saturation "
-                        "scale at the bound, e.g. a softening's n_c), since a trend along the session's schedule "
+                   help="do not name an effect whose change is not seen to settle within the session (its "
+                        "saturation scale at a bound, e.g. a softening's n_c), since a trend along the session's schedule "
                         "would look the same: report it as seen, not named (the default). --no-require-settling "
                         "names it, with that caveat")
     d.set_defaults(func=cmd_diagnose)

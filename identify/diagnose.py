@@ -35,7 +35,7 @@ out-of-sample evidence, add it, refit, look again.
    bound (a softening's n_c) has not been seen to settle within the session: it is listed as
    seen, not named (``Term.unsettled``; ``Settings.must_settle``, the default: over the
    hidden-effect suite on two seed sets, with the oracle and the fitted base, naming it put a
-   false softening on 15 of 80 controls, requiring it on 3).
+   false softening on 15 of 80 controls, requiring it on 2).
 5. **Confounding.** Two passing candidates whose corrections are alike (correlation above
    ``confound_corr``) and neither of which predicts clearly better out of sample are reported
    as confounded — each one's evidence and the experiment that would separate them — and
@@ -481,18 +481,25 @@ class Term:
     def unsettled(self, u: np.ndarray) -> str | None:
         """Why the term's part ``u`` of a fit is not seen to settle — its ``settles`` scale at
         the upper bound: a trend along the session's schedule (its time, its speed levels in
-        order) would look the same — or None."""
+        order) would look the same; at the lower bound: the change is over within the first
+        few reversals, and a step between the session's first experiment and the next would
+        look the same — or None."""
         if self.settles is None:
             return None
         j = [f[0] for f in self.free].index(self.settles)
-        if u[j] < self.free[j][3] - SETTLE_TOL:
-            return None
-        return (f"its {self.settles} is at its bound {math.exp(self.free[j][3]):.3g}: the change does not settle "
-                f"within the session, and a trend along the session's schedule (time, speed levels in order) would "
-                f"look the same. To tell: {EFFECTS[self.name].separated_by}")
+        lo, hi = self.free[j][2], self.free[j][3]
+        if u[j] >= hi - SETTLE_TOL:
+            return (f"its {self.settles} is at its bound {math.exp(hi):.3g}: the change does not settle within the "
+                    f"session, and a trend along the session's schedule (time, speed levels in order) would look "
+                    f"the same. To tell: {EFFECTS[self.name].separated_by}")
+        if u[j] <= lo + SETTLE_TOL:
+            return (f"its {self.settles} is at its lower bound {math.exp(lo):.3g}: the change is over within the "
+                    f"first few reversals, and a step between the session's first experiment and the next (other "
+                    f"strokes, other speeds) would look the same. To tell: {EFFECTS[self.name].separated_by}")
+        return None
 
 
-SETTLE_TOL = math.log(1.02)  # a scale within 2 % of its upper bound is at it
+SETTLE_TOL = math.log(1.02)  # a scale within 2 % of a bound is at it
 
 
 def presliding_range(params: FrictionParams) -> float:
@@ -1319,17 +1326,17 @@ class Diagnosis:
     @property
     def unsettled(self) -> list:
         """With ``Settings.must_settle`` (the default): the last round's candidates with held-out
-        evidence that were not named because their change does not settle within the session
-        (``Term.unsettled``)."""
+        evidence that were not named because their change is not seen to settle within the
+        session (``Term.unsettled``)."""
         if not self.settings.must_settle:
             return []  # such a candidate is named, with that caveat in the notes
         return [c for c in self.candidates if c.get("unsettled") and c.get("evident")]
 
     def not_named(self) -> list:
         """What the evidence shows but the diagnosis does not name, one short line each: an
-        effect seen that does not settle within the session (with ``Settings.must_settle``) and
+        effect seen that is not seen to settle within the session (with ``Settings.must_settle``) and
         pairs of effects confounded with each other."""
-        return ([f"{c['name']} seen, not named (its change does not settle within the session)" for c in self.unsettled]
+        return ([f"{c['name']} seen, not named (its change is not seen to settle within the session)" for c in self.unsettled]
                 + [f"{c['effects'][0]} and {c['effects'][1]} confounded" for c in self.confounded])
 
     @property
@@ -1355,7 +1362,7 @@ class Diagnosis:
         if self.effects:
             L.append("Missing effects named (out-of-sample evidence): " + ", ".join(self.effects))
         elif self.unsettled:
-            L.append("No missing effect named: what improves the held-out prediction does not settle within the "
+            L.append("No missing effect named: what improves the held-out prediction is not seen to settle within the "
                      "session (required here).")
         else:
             L.append("No missing effect named: nothing improves the held-out prediction in most folds.")
@@ -1387,7 +1394,7 @@ class Diagnosis:
         L.append(f"Candidates, last round (blocked CV: {self.settings.folds} folds of "
                  f"{self.settings.blocks_per_fold} contiguous blocks; named if better held out in most informative "
                  f"folds and ≥ {100 * self.settings.min_gain:.0f} % pooled"
-                 + ("; settling required: one whose change does not settle within the session is seen, not named"
+                 + ("; settling required: one whose change is not seen to settle within the session is seen, not named"
                     if self.settings.must_settle else "") + "):")
         for c in self.candidates:
             mark = "*" if c["significant"] else ("+" if c["passes"] else " ")

@@ -35,9 +35,10 @@ class DiagnoseTab:
                                           hint="find the effect the current model misses in the uploaded data")
             # Settings.must_settle (``diagnose --require-settling``): read when a diagnosis starts
             self.gui_settle = gui.add_checkbox("Require settling", initial_value=True,
-                                               hint="an effect whose change does not settle within the session (a "
-                                                    "softening still going at the end) is listed as seen, not named: "
-                                                    "a trend along the session's schedule would look the same")
+                                               hint="an effect whose change is not seen to settle within the session (a "
+                                                    "softening still going at the end, or over after the first "
+                                                    "reversals) is listed as seen, not named: a trend or a step "
+                                                    "along the session's schedule would look the same")
             self.gui_cancel = gui.add_button("Cancel diagnosis", visible=False, color="red")
             self.gui_progress = gui.add_progress_bar(0.0, visible=False)
             self.gui_status = gui.add_markdown("")

@@ -10,6 +10,7 @@ import pytest
 from leuven_friction.identify.diagnose import (
     Comparison,
     FreeSteadyCurve,
+    Term,
     averaging_length,
     friction_from_force,
     gross_sliding,
@@ -102,6 +103,19 @@ def test_speed_order_tells_a_sweep_in_order_from_one_that_returns():
     few = _holds([0.1, -0.3, 1.0])
     assert math.isnan(speed_order(np.arange(len(few)) * 1e-3, few, few != 0).rho)
     assert speed_order(t, sweep, sweep != 0, min_samples=401).holds == 0
+
+
+def test_a_saturation_scale_at_either_bound_is_not_seen_settling():
+    # n_c free between 3 and 10 reversals (log): at 10 the change still runs at the session's
+    # end (a trend), at 3 it is over within the first reversals (a step); between, it is seen
+    term = Term("cyclic_softening", {}, (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(3.0), math.log(10.0))),
+                settles="n_c")
+    assert "at its bound 10" in term.unsettled(np.array([-0.3, math.log(10.0)]))
+    assert "at its bound 10" in term.unsettled(np.array([-0.3, math.log(9.9)]))  # within 2 %
+    assert "at its lower bound 3" in term.unsettled(np.array([-0.3, math.log(3.0)]))
+    assert term.unsettled(np.array([-0.3, math.log(5.0)])) is None
+    assert term.unsettled(np.array([-0.3, math.log(3.2)])) is None  # 7 % above the bound
+    assert Term("time_drift", {}, (("b", "lin", -0.9, 5.0),)).unsettled(np.array([5.0])) is None  # no scale to settle
 
 
 def test_the_level_at_rest_is_a_free_scale_of_the_model_there():
