@@ -31,7 +31,7 @@ out-of-sample evidence, add it, refit, look again.
    it changes the prediction at all, and the pooled held-out RMS by ``min_gain`` — over the
    record and where its physics shows (steady gross sliding for a friction factor, the
    transitions after reversals for a stiffness effect). A BIC with the effective number of
-   samples is reported as a second line. A candidate whose saturation scale ends at its upper
+   samples is reported as a second line. A candidate whose saturation scale ends at either
    bound (a softening's n_c) has not been seen to settle within the session: it is listed as
    seen, not named (``Term.unsettled``; ``Settings.must_settle``, the default: over the
    hidden-effect suite on two seed sets, with the oracle and the fitted base, naming it put a
@@ -543,7 +543,7 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
                     # stiffness factor, which the alternative's κ0 already holds; n_c ≤ half the
                     # reversals: a change still far from saturating at the session's end is a
                     # trend in the reversal count, which a schedule confounds with time and speed; one
-                    # fitted at that bound has not been seen settling, and the report says so
+                    # fitted at either bound has not been seen settling, and the report says so
                     # (``Term.unsettled``; unless ``Settings.must_settle`` is off it is not named)
                     (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(3.0), math.log(max(nrev / 2, 3.5)))),
                     settles="n_c")
