@@ -37,7 +37,7 @@ def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True):
     return {"kind": kind, "seed": seed, "hidden": list(effects), "expected": sorted(case.expected), "named": named,
             "confounded": [c["effects"] for c in d.confounded], "unsettled": [c["name"] for c in d.unsettled],
             "rms_steps": gap, "rms_free_steps": [s.get("rms_free") for s in d.steps], "noise": d.noise,
-            "space": d.space, "samples": len(df), "seconds": el,
+            "space": d.space, "samples": len(df), "seconds": el, "notes": list(d.notes),
             "heldout_gains": [s.get("heldout_gain") for s in d.steps[2:]],
             "best_rejected": max((c["heldout_gain"] for c in d.candidates if not c["significant"]), default=None),
             "candidates": [{k: c.get(k) for k in ("name", "heldout_gain", "folds_improved", "folds_informative", "where",

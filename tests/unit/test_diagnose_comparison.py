@@ -10,6 +10,7 @@ import pytest
 from leuven_friction.identify.diagnose import (
     Comparison,
     FreeSteadyCurve,
+    SpeedOrder,
     Term,
     averaging_length,
     friction_from_force,
@@ -17,9 +18,11 @@ from leuven_friction.identify.diagnose import (
     mean_acceleration,
     model_nuisance,
     speed_order,
+    stroke_order,
     steady_sliding,
 )
 from scipy.ndimage import uniform_filter1d
+from scipy.stats import spearmanr
 
 
 def test_friction_from_force_removes_the_inertial_term_of_a_known_motion():
@@ -95,14 +98,36 @@ def test_speed_order_tells_a_sweep_in_order_from_one_that_returns():
     sweep = _holds([s * lv for lv in levels for s in (1, -1)])
     t = np.arange(len(sweep)) * 1e-3
     up = speed_order(t, sweep, sweep != 0)
-    assert up.holds == 12 and up.rho > 0.95
+    assert up.count == 12 and up.rho > 0.95
     vee = _holds([s * lv for lv in levels + levels[::-1] for s in (1, -1)])
     back = speed_order(np.arange(len(vee)) * 1e-3, vee, vee != 0)
-    assert back.holds == 24 and abs(back.rho) < 0.2
+    assert back.count == 24 and abs(back.rho) < 0.2
     # a hold shorter than min_samples is not a stretch of steady sliding at one speed
     few = _holds([0.1, -0.3, 1.0])
     assert math.isnan(speed_order(np.arange(len(few)) * 1e-3, few, few != 0).rho)
-    assert speed_order(t, sweep, sweep != 0, min_samples=401).holds == 0
+    assert speed_order(t, sweep, sweep != 0, min_samples=401).count == 0
+
+
+def test_stroke_order_follows_the_reversals_not_the_transitions_or_dwells():
+    # strokes between reversals, each from rest through a transition (a ramp up to the stroke's
+    # speed) and back to a dwell: speeds doubling with every second reversal (the generator's
+    # linear-stage sweep) give ρ = 1 up to the ties of a pair; the same speeds cycled three
+    # times over the session (a tribometer's passes) give the ρ of the levels alone (scipy's),
+    # under the threshold of a note: the ramps and dwells do not enter
+    def session(levels):
+        v = [np.r_[np.linspace(0.0, lv, 40), np.full(300, lv), np.linspace(lv, 0.0, 40), np.zeros(60)]
+             * (1 if k % 2 else -1) for k, lv in enumerate(levels)]
+        return np.concatenate([np.full(len(a), k) for k, a in enumerate(v)]), np.concatenate(v)
+
+    rising = [1e-4 * 2.0 ** (k // 2) for k in range(16)]
+    up = stroke_order(*session(rising), v_rest=1e-6)
+    assert up.count == 16 and up.rho > 0.95
+    cycled = [1e-4 * 2.0 ** (k % 6) for k in range(18)]
+    expected = abs(spearmanr(np.arange(18), cycled).statistic)
+    assert stroke_order(*session(cycled), v_rest=1e-6).rho == pytest.approx(expected, abs=1e-9) and expected < 0.8
+    # three strokes are too few to judge; below the rest threshold nothing moves
+    assert math.isnan(stroke_order(*session(rising[:3]), v_rest=1e-6).rho)
+    assert stroke_order(*session(rising), v_rest=1.0).count == 0
 
 
 def test_a_saturation_scale_at_either_bound_is_not_seen_settling():
@@ -116,6 +141,15 @@ def test_a_saturation_scale_at_either_bound_is_not_seen_settling():
     assert term.unsettled(np.array([-0.3, math.log(5.0)])) is None
     assert term.unsettled(np.array([-0.3, math.log(3.2)])) is None  # 7 % above the bound
     assert Term("time_drift", {}, (("b", "lin", -0.9, 5.0),)).unsettled(np.array([5.0])) is None  # no scale to settle
+    # where the strokes' speeds do not follow the reversals, a trend at the upper bound is no
+    # stiffness following the speed, but still may be one changing with time: a reason all the same
+    assert term.bound(np.array([-0.3, math.log(9.9)])) == "upper"
+    assert term.bound(np.array([-0.3, math.log(5.0)])) is None
+    cycled, swept = SpeedOrder(24, 0.48), SpeedOrder(18, 0.99)
+    why = term.unsettled(np.array([-0.3, math.log(10.0)]), cycled)
+    assert "do not follow the reversals" in why and "changing with time" in why
+    assert "speed levels in order" in term.unsettled(np.array([-0.3, math.log(10.0)]), swept)
+    assert "at its lower bound 3" in term.unsettled(np.array([-0.3, math.log(3.0)]), cycled)
 
 
 def test_the_level_at_rest_is_a_free_scale_of_the_model_there():
