@@ -488,7 +488,7 @@ class Term:
         if self.settles is None:
             return None
         j = [f[0] for f in self.free].index(self.settles)
-        lo, hi = self.free[j][2], self.free[j][3]
+        lo, hi = self.free[j][2:4]
         return "upper" if u[j] >= hi - SETTLE_TOL else ("lower" if u[j] <= lo + SETTLE_TOL else None)
 
     def unsettled(self, u: np.ndarray, strokes: SpeedOrder | None = None) -> str | None:
@@ -1734,7 +1734,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # the transitions: within twice the presliding range of a reversal (at rest or moving),
     # after the first significant reversal: before it the model runs on its virgin curve, a
     # property of the hysteresis model itself, not of a softening contact
-    transition = ~gross_sliding(cmp_) & (cmp_.context().reversals >= 1)
+    reversals = cmp_.context().reversals
+    transition = ~gross_sliding(cmp_) & (reversals >= 1)
     # where each candidate must help as well, held out: a stiffness effect where the presliding
     # spring shows (in the transitions after the first reversal), else it could only stand in for a
     # misfit of break-away; a friction factor of time, position or reversals in steady
@@ -1750,7 +1751,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"{order.count} holds of steady sliding): a slow change in time and the shape of "
                           f"S(v) are confounded here, and part of a drift is taken as S(v). To tell: visit the "
                           f"speed levels in a shuffled order, or repeat the first ones at the session's end")
-    strokes = stroke_order(cmp_.context().reversals[allm], cmp_.velocity[allm], cmp_.v_rest)
+    strokes = stroke_order(reversals[allm], cmp_.velocity[allm], cmp_.v_rest)
     if "cyclic_softening" in s.candidates and abs(strokes.rho) >= SPEED_ORDER_RHO:
         # the stiffness varying with speed a softening is judged beside (rate_alternative) then
         # takes up part of a true softening, and a transition whose dependence on speed eq. (5)
