@@ -495,7 +495,8 @@ class Term:
         """Why the term's part ``u`` of a fit is not seen to settle — its ``settles`` scale at
         the upper bound: a trend along the session's schedule would look the same (where the
         strokes' speeds follow the reversals, ``stroke_order``, a stiffness following the speed;
-        where they do not, still one changing with time); at the lower bound: the change is over
+        where they do not over the session, still one changing with time, and the speed where
+        cycles of rising speeds keep them in order within each); at the lower bound: the change is over
         within the first few reversals, and a step between the session's first experiment and
         the next would look the same — or None."""
         where = self.bound(u)
@@ -504,9 +505,13 @@ class Term:
         lo, hi = next(f[2:4] for f in self.free if f[0] == self.settles)
         if where == "upper":
             unordered = strokes is not None and abs(strokes.rho) < SPEED_ORDER_RHO
-            trend = (f"the strokes' speeds do not follow the reversals here (|Spearman ρ| {strokes.rho:.2f} over "
-                     f"{strokes.count} strokes), so it is no stiffness following the speed, but one changing with "
-                     f"time would look the same" if unordered else
+            # "over the session": a schedule that cycles through rising speeds (a tribometer's
+            # passes) keeps them in order within each cycle, where the stiffness following the
+            # speed that a softening is judged beside takes up part of it
+            trend = (f"the strokes' speeds do not follow the reversals over the session (|Spearman ρ| "
+                     f"{strokes.rho:.2f} over {strokes.count} strokes), so a stiffness following the speed "
+                     f"makes at most a part of it (within passes that run their speeds in order), but one "
+                     f"changing with time would look the same" if unordered else
                      "a trend along the session's schedule (time, speed levels in order) would look the same")
             return (f"its {self.settles} is at its bound {math.exp(hi):.3g}: the change does not settle within the "
                     f"session, and {trend}. To tell: {EFFECTS[self.name].separated_by}")
