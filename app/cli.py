@@ -69,10 +69,12 @@ def cmd_simulate(args) -> int:
     from .outputs import check_output_path
 
     check_output_path(args.out, "--out")  # before the work
-    from ..identify.io import table_format
+    from ..identify.io import require_pyarrow, table_format
 
     if table_format(args.out) == "mat":  # .mat is read, not written
         raise UserError(f"--out {args.out}: MATLAB files are read, not written; use .csv or .parquet")
+    if table_format(args.out) == "parquet":
+        require_pyarrow(f"--out {args.out}")  # a missing pyarrow is said before the work, naming the user's file
     params = _params(args.params, args.model)
     if args.experiment and args.smooth_path:
         raise UserError("--smooth-path: only with --input (an experiment's motion is not logged)")
@@ -97,6 +99,8 @@ def cmd_simulate(args) -> int:
     rec = load_recording(_recording(args.input), columns=cols, require=need)
     stages.verbose = len(rec) >= _BIG_RECORDING
     stages.done(f"read {len(rec)} rows from {args.input}")
+    if not args.params:
+        print(default_params_warning(params.units, rec.units), file=sys.stderr)
     position = rec.position
     if args.smooth_path:
         import numpy as np
@@ -128,6 +132,18 @@ def cmd_simulate(args) -> int:
     return 0
 
 
+def default_params_warning(param_units: dict, rec_units: dict) -> str:
+    """What simulating a recording without --params means: the paper's robot joint, whose
+    numbers are another machine's — in other units too, when the recording's differ."""
+    line = ("no --params: simulated with the built-in default, the paper's KUKA IR 361 axis 1 (give --params with "
+            "this machine's parameters, e.g. from `fit`)")
+    pu, ru = param_units.get("position"), rec_units.get("position")
+    if pu and ru and pu != ru:
+        line += (f"; its parameters are in {pu}, {param_units.get('force')}, the recording in {ru}, "
+                 f"{rec_units.get('force') or rec_units.get('friction') or '?'}: the friction is not of this scale")
+    return line
+
+
 _BIG_RECORDING = 500_000  # rows from which a command says what each stage took
 
 
@@ -150,6 +166,10 @@ class _Stages:
 
 
 def _progress(frac, msg):
+    if not sys.stderr.isatty():
+        # a log file gets one plain line per stage, not a bar redrawn with carriage returns
+        print(f"{int(100 * frac):3d}% {msg}", file=sys.stderr, flush=True)
+        return
     bar = "#" * int(round(20 * frac))
     print(f"\r[{bar:20s}] {int(100 * frac):3d}% {msg:60s}", end="", file=sys.stderr, flush=True)
 
@@ -216,7 +236,7 @@ def cmd_fit(args) -> int:
     n = _positive_n(args.n)  # refused before any file is read
     outputs = Outputs({"--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
-    base = _params(args.params, None)
+    base = _params(args.params, None) if args.params else None  # None: the fit says its held values are the paper's
     overrides = {}
     for item in args.threshold or []:
         name, sep, value = item.partition("=")
@@ -259,6 +279,12 @@ def cmd_serve(args) -> int:
         args.data = _recording(args.data)
         if not Path(args.data).is_file():
             raise UserError(f"--data: {args.data} is not a file")
+        from ..identify.data import DataError, load_recording
+
+        try:  # said on the console as well as on the page (where its columns can still be chosen)
+            load_recording(args.data)
+        except DataError as e:
+            print(f"--data: {e} (the explorer says so on its page too)", file=sys.stderr, flush=True)
     params = _params(args.params, None)
     warning = addr.network_warning()
     if warning:

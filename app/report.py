@@ -6,6 +6,7 @@ import html
 
 import plotly.io as pio
 
+from ..model.effects import format_values
 from . import plots
 
 
@@ -22,7 +23,7 @@ def diagnosis_html(d, source: str) -> str:
         parts.append(pio.to_html(fig, include_plotlyjs=(i == 0), full_html=False, config={"displaylogo": False}))
     title = f"Friction model diagnosis — {html.escape(source)}"
     steps = _table([[s["label"], f"{s['rms']:.4g}", f"{s['rms'] / d.noise:.2f}" if d.noise else "",
-                     f"{s['rms_free']:.4g}", ", ".join(f"{k} = {v:.4g}" for k, v in (s.get("params") or {}).items())]
+                     f"{s['rms_free']:.4g}", format_values(s["name"], s.get("params") or {}, d.params_before.units)]
                     for s in d.steps],
                    ["step", "RMS gap of the model written", "× noise floor", "RMS beside a free S(v) (decided on)",
                     "effect parameters"])

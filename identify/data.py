@@ -22,15 +22,16 @@ from .errors import DataError
 
 SIGNALS = ("time", "position", "force", "velocity", "friction", "normal_load", "temperature")
 
-ALIASES = {
-    "time": ("time", "t", "timestamp", "time_s", "seconds"),
-    "position": ("position", "x", "q", "angle", "pos", "displacement", "theta", "joint_angle"),
-    "force": ("force", "torque", "applied_torque", "applied_force", "u", "tau", "motor_torque", "f"),
-    "velocity": ("velocity", "v", "speed", "qd", "omega"),
-    "friction": ("friction", "friction_force", "friction_torque", "ff"),
+ALIASES = {  # header names, lower case, units stripped; the German ones as lab software writes them
+    "time": ("time", "t", "timestamp", "time_s", "seconds", "zeit"),
+    "position": ("position", "x", "q", "angle", "pos", "displacement", "theta", "joint_angle", "weg", "winkel"),
+    "force": ("force", "torque", "applied_torque", "applied_force", "u", "tau", "motor_torque", "f", "kraft",
+              "moment", "drehmoment"),
+    "velocity": ("velocity", "v", "speed", "qd", "omega", "geschwindigkeit"),
+    "friction": ("friction", "friction_force", "friction_torque", "ff", "reibkraft", "reibmoment", "reibung"),
     "normal_load": ("normal_load", "load", "normal_force", "fn", "f_n", "n_load", "normal", "n", "normal_load_n",
-                    "force_normal", "normalforce"),
-    "temperature": ("temperature", "temp", "t_oil", "celsius"),
+                    "force_normal", "normalforce", "normalkraft"),
+    "temperature": ("temperature", "temp", "t_oil", "celsius", "temperatur"),
 }
 
 # factor to SI, and the SI unit it lands in
@@ -120,12 +121,12 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     ``columns`` maps signals to column names; ``units`` maps signals to unit names and
     overrides what the header says. Columns not recognised are ignored (listed in ``notes``).
     """
+    encoding = "utf-8-sig"
     if isinstance(source, (bytes, bytearray)):
+        from .io import decode_text
+
         label = name or "<upload>"
-        try:
-            text = bytes(source).decode("utf-8-sig")
-        except UnicodeDecodeError:
-            raise DataError(f"{label}: not a text file (could not decode as UTF-8)") from None
+        text, encoding = decode_text(bytes(source), label)
         path = Path(label)
     elif isinstance(source, str) and ("\n" in source) and name:
         text, path = source, Path(name)
@@ -139,18 +140,24 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
 
         # only the columns a signal can come from: the other columns of a wide file cost nothing
         explicit = set((columns or {}).values())
-        df = read_table_file(path, usecols=lambda c: str(c) in explicit or _split_header(c)[0] in _KNOWN_NAMES)
+        keys = _KNOWN_NAMES | {_split_header(c)[0] for c in explicit}  # "Zeit" reads "Zeit [ms]" too
+        df = read_table_file(path, usecols=lambda c: str(c) in explicit or _split_header(c)[0] in keys)
     else:
         df = _read_table(path, text)
+    encoding = df.attrs.get("encoding", encoding)
     in_file = [str(c) for c in df.attrs.get("columns_in_file", df.columns)]
     if not in_file or (df.shape[1] > 0 and len(df) == 0):
         raise DataError(f"{path}: no data rows under the header")
 
     mapping = dict(columns or {})
     headers = {str(c): _split_header(c) for c in df.columns}
-    for sig, col in mapping.items():
+    for sig, col in list(mapping.items()):
         if col not in headers:
-            raise DataError(f"{path}: column {col!r} given for {sig} is not in the file (columns: {', '.join(in_file)})")
+            # a name given without the header's unit ("Zeit" for "Zeit [ms]") names that column
+            same = [c for c, (key, _) in headers.items() if _split_header(col)[0] == key and _split_header(col)[1] is None]
+            if len(same) != 1:
+                raise DataError(f"{path}: column {col!r} given for {sig} is not in the file (columns: {', '.join(in_file)})")
+            mapping[sig] = same[0]
     taken = set(mapping.values())
     for sig in SIGNALS:
         if sig in mapping:
@@ -198,6 +205,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     ignored = [c for c in in_file if c not in mapping.values()]
     if ignored:
         notes.append(f"ignored columns: {', '.join(ignored)}")
+    if encoding != "utf-8-sig":
+        notes.append(f"not UTF-8: read as {encoding} (Windows-1252)")
     rec.notes = notes
 
     n = len(rec.time)
@@ -207,9 +216,10 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     bad = np.flatnonzero(dt <= 0)
     if len(bad):
         r = int(bad[0]) + 1
+        raw = df[rec.columns["time"]]  # the file's own numbers, in the file's unit
         raise DataError(
-            f"{path}: column {rec.columns['time']!r} row {r + 2}: time {rec.time[r]:g} does not increase "
-            f"(previous {rec.time[r - 1]:g}); sort the file or remove repeated rows"
+            f"{path}: column {rec.columns['time']!r} row {r + 2}: time {raw.iloc[r]} does not increase "
+            f"(previous {raw.iloc[r - 1]}); sort the file or remove repeated rows"
         )
     return rec
 

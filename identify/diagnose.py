@@ -63,7 +63,7 @@ from scipy.stats import rankdata
 
 from ..model import FrictionParams, TransitionCurve, simulate_displacement
 from ..model.simulate import stribeck_curve
-from ..model.effects import EFFECTS, Context, Signals, effect_scales, significant_reversals
+from ..model.effects import EFFECTS, Context, Signals, effect_scales, format_values, significant_reversals
 from .data import DataError, Recording
 from .segment import local_slope
 
@@ -1005,7 +1005,10 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     rise = np.diff(np.asarray(tc.F, dtype=float)) if NC else np.zeros(0)
 
     def side(s, f):
-        return StribeckSide(Fs=s.Fs * f[0], Fc=s.Fc * f[1], vs=s.vs, delta=s.delta, sigma2=s.sigma2)
+        # a side the fit made Coulomb (F_s held at F_c) stays Coulomb: its F_s follows F_c's
+        # factor, or the refit would write a Stribeck peak, even a dip, that the file holds as equal
+        coulomb = math.isclose(s.Fs, s.Fc, rel_tol=1e-12)
+        return StribeckSide(Fs=s.Fs * f[1 if coulomb else 0], Fc=s.Fc * f[1], vs=s.vs, delta=s.delta, sigma2=s.sigma2)
 
     def unpack(u):
         g, kk, ln, ls = math.exp(u[0]), math.exp(u[1]), u[2], u[3]
@@ -1405,7 +1408,7 @@ class Diagnosis:
             L.append(f"  {s['label']:44s} {s['rms']:.4g} ({s['rms'] / nz:.2f} × noise)   "
                      f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
             if s.get("params"):
-                L.append("      " + ", ".join(f"{k} = {v:.4g}" for k, v in s["params"].items()))
+                L.append("      " + format_values(s["name"], s["params"], self.params_before.units))
         L.append("Per regime (RMS before → after the refit → final; the noise floor of that regime's samples):")
         for k, r in self.regimes.items():
             nr = r["noise"]
@@ -1420,7 +1423,10 @@ class Diagnosis:
         for c in self.candidates:
             mark = "*" if c["significant"] else ("+" if c["passes"] else " ")
             why = ""
-            if c.get("where"):
+            if c.get("where") and str(c.get("folds_where", "")).endswith("/0"):
+                # no fold where it moves the prediction there: a gain would be 0/0
+                why = f"  in {c['where']}: it changes no fold's prediction — not enough"
+            elif c.get("where"):
                 why = (f"  in {c['where']}: {-100 * c['gain_where']:+.1f} %, folds {c['folds_where']}"
                        + (" — not enough" if c.get("not_where_it_shows") else ""))
             if c.get("unsettled"):

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
-from ..model.params import spec_of
+from ..model.params import get_value, spec_of
 
 from .data import Recording
 from .errors import IdentificationError
@@ -28,6 +28,7 @@ from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import Prepared, constant_velocity_levels, force_branches, motion_branches, noise_sd, prepare
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
+BRANCH_SPAN_RATIO = 100.0  # a branch moving this many times the median branch has slid (see ``sliding_branches``)
 
 
 @dataclass
@@ -75,6 +76,24 @@ def _thin(branches):
             idx = np.unique(np.linspace(0, len(b.force) - 1, MAX_POINTS).astype(int))
             b = dataclasses.replace(b, force=b.force[idx], displacement=b.displacement[idx])
         out.append(b)
+    return out
+
+
+def sliding_branches(datasets) -> list:
+    """Leave out the presliding branches that moved more than BRANCH_SPAN_RATIO times the
+    median branch of the recordings: they slid (a slow slide below the speed that ends a
+    branch — under a smooth applied force, gross sliding can start slowly), and one such
+    displacement would outweigh every real branch in the likelihood. Presliding branches
+    span a few times each other at most (up to 17× on the shipped samples: an internal loop
+    against a full one). Returns "name: span" of each one left out."""
+    spans = [float(np.ptp(b.displacement)) for d in datasets for b in d.branches]
+    if len(spans) < 3:
+        return []
+    limit = BRANCH_SPAN_RATIO * float(np.median(spans))
+    out = []
+    for d in datasets:
+        out += [f"{d.name}: {np.ptp(b.displacement):.3g}" for b in d.branches if np.ptp(b.displacement) > limit]
+        d.branches = [b for b in d.branches if np.ptp(b.displacement) <= limit]
     return out
 
 
@@ -164,6 +183,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     if not recordings:
         raise IdentificationError("nothing to fit: no recordings given")
     p = base or default_params()
+    # what is held comes from the file the user gave, or else from the paper's robot joint,
+    # whose values mean nothing for another machine: the report says which
+    start = ("from the starting parameter file" if base is not None else
+             "from the built-in default, the paper's KUKA IR 361 axis 1 in its units (give --params with this "
+             "machine's values)")
     notes: list = []
     held: dict = {}
     say(0.05, "deriving thresholds and finding constant-velocity levels")
@@ -194,7 +218,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                 reason = f"no {side}-velocity levels: mirrored from the {'negative' if sign > 0 else 'positive'} side"
             else:
                 vals = {k: getattr(getattr(p.stribeck, side), k) for k in NAMES}
-                reason = f"no {side}-velocity levels: kept the starting parameter file's value"
+                reason = f"no {side}-velocity levels: kept {start}"
             held.update({f"stribeck.{side}.{k}": reason for k in NAMES})
             sides[side] = StribeckSide(**vals)
         else:
@@ -229,13 +253,17 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             notes.append(f"{pr.source}: {len(fb)} force-driven and {len(mb)} motion-driven presliding branch(es)")
     for d in datasets:
         d.branches = _thin(d.branches)
+    slid = sliding_branches(datasets)
+    if slid:
+        notes.append(f"{len(slid)} presliding branch(es) moved over {BRANCH_SPAN_RATIO:g}× the median branch "
+                     f"({'; '.join(slid)}): they slid, left out of the transition curve's likelihood")
     n_br = sum(len(d.branches) for d in datasets)
     tfit = None
     if n_br:
         z = knots_from_data(datasets, n) if knots is None else check_knots(knots, datasets)
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
         tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
-        flat = [i for i in range(1, len(tfit.F)) if not tfit.F[i] > tfit.F[i - 1] * (1 + 1e-9)]
+        flat = sorted(set(tfit.flat) | {i for i in range(1, len(tfit.F)) if not tfit.F[i] > tfit.F[i - 1] * (1 + 1e-9)})
         if flat and knots is None and len(z) - len(flat) >= 2:
             # a segment the likelihood makes flat (its increment underflows): the data do not
             # resolve that knot; drop it and refit
@@ -243,6 +271,18 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                          f"by the data (flat segment): dropped")
             z = np.delete(z, flat)
             tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+    if tfit is not None and tfit.unbounded:
+        # the likelihood pushed a segment to the limit of 20× the largest force change of any
+        # branch: the branches do not bound F_d there, and the curve is no estimate
+        notes.append(f"transition curve: the segment(s) up to knot(s) {list(tfit.unbounded)} ran to their limit of "
+                     f"20× the largest force change of any branch: the branches do not bound F_d (not written as "
+                     f"an estimate)")
+        tfit = None
+        n_br = 0
+        why_curve = "the branches do not bound F_d"
+    else:
+        why_curve = "no presliding data"
+    if tfit is not None:
         bad = [i for i in range(1, len(tfit.F)) if not (tfit.stderr[i] < 0.5 * (tfit.F[i] - tfit.F[i - 1]) + 0.5 * tfit.F[i])]
         if bad:
             notes.append(f"transition curve: F_d at knot(s) {bad} has σ comparable to its value: weakly determined")
@@ -252,13 +292,13 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         if not fit_n:
             held["n"] = f"fixed at {n:g} (the paper's choice; --fit-n estimates it)"
     else:
-        held["transition_curve"] = "no presliding data: kept the starting parameter file's curve"
-        held["n"] = "no presliding data: kept the starting parameter file's value"
+        held["transition_curve"] = f"{why_curve}: kept {start}"
+        held["n"] = f"{why_curve}: kept {start}"
     if all(d.fit is None for d in decisions.values()) and tfit is None:
         raise IdentificationError("nothing to fit: the data hold neither constant-velocity levels nor presliding "
                                   "branches (force ramps with reversals, or reversals of a motion with measured friction)")
     for k in ("sigma1", "inertia"):
-        held.setdefault(k, "not estimated by this fit: kept the starting parameter file's value")
+        held.setdefault(k, f"not estimated by this fit: kept {start}")
 
     unc = {}
     for side, dec in decisions.items():
@@ -309,6 +349,12 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     res.params = res.params.replace(uncertainty={**unc, **res.params.uncertainty} if res.refinement.get("done") else unc,
                                     provenance=prov, units=_units_of(recordings)).validate()
     return res
+
+
+def _held_value(params: FrictionParams, path: str) -> str:
+    """" = value" of a held scalar parameter at a dotted path (nothing for a whole curve)."""
+    v = get_value(params, path)
+    return f" = {v:.4g}" if isinstance(v, (int, float)) else ""
 
 
 def fit_report(res: FitResult) -> str:
@@ -368,7 +414,7 @@ def fit_report(res: FitResult) -> str:
             lines.append(f"    not done: {rf.get('reason', '')}")
     if res.held:
         lines.append("[[Held parameters (not estimated) and why]]")
-        lines.extend(f"    {k}: {why}" for k, why in res.held.items())
+        lines.extend(f"    {k}{_held_value(res.params, k)}: {why}" for k, why in res.held.items())
     if res.notes:
         lines.append("[[Notes]]")
         lines.extend(f"    {m}" for m in res.notes)

@@ -34,6 +34,7 @@ from .errors import DataError
 PARQUET_SUFFIXES = (".parquet", ".pq")
 MAT_SUFFIXES = (".mat",)
 SNIFF_BYTES = 1 << 16
+SNIFF_ROWS = 20  # data lines the decimal mark is guessed from
 CSV_FORMAT = "%.10g"
 CSV_BLOCK_ROWS = 65536
 
@@ -52,19 +53,40 @@ def table_format(path) -> str:
 def sniff(lines: Iterable[str]) -> tuple[str, str]:
     """(separator, decimal mark) from the first lines of a table: the separator is the most
     frequent of tab, semicolon and comma in the header (the first line that is not blank or a
-    ``#`` comment), else whitespace; a semicolon table whose first data line has a digit,
-    comma, digit uses the decimal comma (European CSV)."""
+    ``#`` comment), else whitespace; a semicolon table with a digit, comma, digit in its
+    first SNIFF_ROWS data lines uses the decimal comma (European CSV), and
+    so does a tab- or whitespace-separated one whose first data lines have a digit, comma,
+    digit and no digit, point, digit (where a comma cannot separate columns)."""
     rows = [ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")]
     first = rows[0] if rows else ""
     counts = {"\t": first.count("\t"), ";": first.count(";"), ",": first.count(",")}
     sep = max(counts, key=counts.get) if max(counts.values()) > 0 else r"\s+"
     decimal = "."
-    if sep == ";" and len(rows) > 1 and re.search(r"\d,\d", rows[1]):
+    data = "\n".join(rows[1:SNIFF_ROWS + 1])  # a first row of whole numbers says nothing: look at a few
+    if sep == ";" and re.search(r"\d,\d", data):
+        decimal = ","
+    elif sep in ("\t", r"\s+") and re.search(r"\d,\d", data) and not re.search(r"\d\.\d", data):
         decimal = ","
     return sep, decimal
 
 
-def _head_text(path: Path) -> str:
+def decode_text(raw: bytes, label) -> tuple[str, str]:
+    """(text, encoding) of a table's bytes: UTF-8 (with or without a byte-order mark), else
+    Windows-1252, which many lab programs on Windows still write (µ, °, ä as one byte each)."""
+    try:
+        return raw.decode("utf-8-sig"), "utf-8-sig"
+    except UnicodeDecodeError:
+        pass
+    try:
+        return raw.decode(LEGACY_ENCODING), LEGACY_ENCODING
+    except UnicodeDecodeError:
+        raise DataError(f"{label}: not a text file (could not decode as UTF-8 or Windows-1252)") from None
+
+
+LEGACY_ENCODING = "cp1252"
+
+
+def _head_text(path: Path) -> tuple[str, str]:
     try:
         with open(path, "rb") as fh:
             head = fh.read(SNIFF_BYTES)
@@ -73,18 +95,45 @@ def _head_text(path: Path) -> str:
     if b"\0" in head:
         raise DataError(f"{path}: not a text file (it contains NUL bytes)")
     try:
-        text = head.decode("utf-8-sig")
+        return head.decode("utf-8-sig"), "utf-8-sig"
     except UnicodeDecodeError as e:
-        if e.start < len(head) - 4:  # not just a character cut at the end of the sniffed block
-            raise DataError(f"{path}: not a text file (could not decode as UTF-8)") from None
-        text = head[: e.start].decode("utf-8-sig")
-    return text
+        if e.start >= len(head) - 4:  # only a character cut at the end of the sniffed block
+            return head[: e.start].decode("utf-8-sig"), "utf-8-sig"
+    return decode_text(head, path)
+
+
+def ragged_line(path: Path, sep: str) -> tuple[int, int, int] | None:
+    """(line number, fields, fields of the header) of the first line of a delimited table whose
+    count of fields differs from the header's, or None. Reading only some columns, pandas lets
+    such a line through, its extra field dropped. Counted on the bytes at once (a separator is
+    one byte in UTF-8 and Windows-1252 alike); a file with quotes is not checked, as a quoted
+    field may hold the separator."""
+    if sep == r"\s+":
+        return None
+    buf = np.fromfile(path, dtype=np.uint8)
+    if len(buf) == 0 or np.any(buf == ord('"')):
+        return None
+    nl = np.flatnonzero(buf == ord("\n"))
+    starts = np.concatenate([[0], nl + 1])
+    ends = np.concatenate([nl, [len(buf)]])
+    # the line of each separator is the count of newlines before it
+    fields = np.bincount(np.searchsorted(nl, np.flatnonzero(buf == ord(sep))), minlength=len(starts)) + 1
+    keep = starts < len(buf)
+    starts, ends, fields = starts[keep], ends[keep], fields[keep]
+    first = buf[np.minimum(starts, len(buf) - 1)]
+    # blank lines (or a lone carriage return) and # comments are not rows
+    row = (ends > starts) & (first != ord("#")) & ~((first == ord("\r")) & (ends - starts == 1))
+    idx = np.flatnonzero(row)
+    if len(idx) < 2:
+        return None
+    off = idx[1:][fields[idx[1:]] != fields[idx[0]]]
+    return None if len(off) == 0 else (int(off[0]) + 1, int(fields[off[0]]), int(fields[idx[0]]))
 
 
 def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
     import pandas as pd
 
-    text = _head_text(path)
+    text, encoding = _head_text(path)
     if not text.strip():
         raise DataError(f"{path}: the file is empty")
     lines = text.splitlines()
@@ -92,13 +141,18 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
         lines = lines[:-1]  # the last line of the block may be cut
     sep, decimal = sniff(lines)
     opts = dict(sep=sep, engine="c" if sep != r"\s+" else "python", comment="#", skip_blank_lines=True,
-                decimal=decimal, encoding="utf-8-sig")
+                decimal=decimal, encoding=encoding)
     try:
         if usecols is None:
-            return pd.read_csv(path, **opts)
-        names = [str(c) for c in pd.read_csv(path, nrows=0, **opts).columns]
-        df = pd.read_csv(path, usecols=lambda c: usecols(str(c)), **opts)
-        df.attrs["columns_in_file"] = names
+            df = pd.read_csv(path, **opts)
+        else:
+            names = [str(c) for c in pd.read_csv(path, nrows=0, **opts).columns]
+            df = pd.read_csv(path, usecols=lambda c: usecols(str(c)), **opts)
+            df.attrs["columns_in_file"] = names
+            bad = ragged_line(path, sep)
+            if bad is not None:
+                raise DataError(f"{path}: line {bad[0]} has {bad[1]} fields, the header {bad[2]}")
+        df.attrs["encoding"] = encoding
         return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
@@ -108,7 +162,7 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
 
 
 # ---------------------------------------------------------------- Parquet
-def _pyarrow(what: str):
+def require_pyarrow(what: str):
     try:
         import pyarrow as pa
         import pyarrow.parquet as pq
@@ -119,7 +173,7 @@ def _pyarrow(what: str):
 
 
 def read_parquet_file(path: Path, usecols: Callable[[str], bool] | None = None):
-    pa, pq = _pyarrow(str(path))
+    pa, pq = require_pyarrow(str(path))
     try:
         schema = pq.read_schema(path)
         names = [n for n in schema.names if usecols is None or usecols(n)]
@@ -246,7 +300,7 @@ def write_csv(columns: dict, path) -> None:
 
 
 def write_parquet(columns: dict, path) -> None:
-    pa, pq = _pyarrow(str(path))
+    pa, pq = require_pyarrow(str(path))
     names, arrays, _ = _columns(columns)
     # no dictionary encoding: measured floats rarely repeat, and trying costs 4× the write
     pq.write_table(pa.table({c: a for c, a in zip(names, arrays)}), path, use_dictionary=False)

@@ -32,6 +32,9 @@ GRID = 400  # force grid per branch for the displacement integral
 class Gaussian:
     sigma: float
 
+    def __post_init__(self):
+        object.__setattr__(self, "sigma", float(self.sigma))  # a plain number in reports and YAML, not numpy's repr
+
     def residuals(self, measured, predicted):
         """r with -log L = ½·Σr² (+ const)."""
         return (measured - predicted) / self.sigma
@@ -45,6 +48,10 @@ class Gaussian:
 class Quantized:
     step: float
     jitter: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "step", float(self.step))
+        object.__setattr__(self, "jitter", float(self.jitter))
 
     def _log_mass(self, measured, predicted):
         # log P(reading) = log(Φ(hi) - Φ(lo)) for the reading's bin; the mirror image keeps
@@ -114,6 +121,8 @@ class TransitionFit:
     nll: float
     offsets: list = field(default_factory=list)
     notes: list = field(default_factory=list)
+    flat: tuple = ()  # knots i whose increment F_i − F_(i−1) ended at its lower bound: the data do not resolve it
+    unbounded: tuple = ()  # … at its upper bound: the data do not bound F_d there (not an estimate)
 
 
 def branch_displacement(z_knots, F_knots, n, D, force):
@@ -226,6 +235,12 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
                          ftol=1e-12, gtol=1e-12)
     F, nn, off = split(best.x)
     best.fun = float(0.5 * np.sum(best.fun ** 2))
+    # an increment held at a bound by the optimiser is where the likelihood kept pushing it:
+    # at the lower one a segment the data leave flat, at the upper one (20× the largest force
+    # change of any branch) one they do not bound at all
+    at = BOUND_TOL * np.maximum(1.0, np.abs(hi[:nk] - lo[:nk]))
+    flat = tuple(int(i) + 1 for i in np.flatnonzero(best.x[:nk] <= lo[:nk] + at))
+    unbounded = tuple(int(i) + 1 for i in np.flatnonzero(best.x[:nk] >= hi[:nk] - at))
 
     H = _information(z_knots, F, nn, fit_n, off, datasets)
     notes = []
@@ -240,7 +255,11 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
     return TransitionFit(
         z=z_knots, F=F, stderr=np.concatenate([[0.0], sd[:nk]]), covariance=cov[:nk, :nk], n=nn,
         n_stderr=float(sd[nk]) if fit_n else None, nll=float(best.fun), offsets=list(map(float, off)), notes=notes,
+        flat=flat, unbounded=unbounded,
     )
+
+
+BOUND_TOL = 1e-3  # a log-increment within this fraction of its range from a bound is at it
 
 
 def _hessian(f, x, h):

@@ -46,6 +46,18 @@ class EffectParam:
     lo_open: bool = False  # the bound itself is excluded
     default: float | None = None  # the value a parameter file may leave out (None: required)
 
+    def unit_in(self, units: Mapping[str, str]) -> str:
+        """This parameter's unit in a parameter set's ``units`` ("" for a pure number)."""
+        if self.unit == "time":
+            return units.get("time", "s")
+        if self.unit == "position":
+            return units.get("position", "")
+        if self.unit == "velocity":
+            return f"{units.get('position', '')}/{units.get('time', 's')}"
+        if self.unit == "load":
+            return units.get("normal_load", "N")
+        return "" if self.unit == "1" else self.unit
+
     def check(self, value, path: str) -> float:
         try:
             x = float(value)
@@ -198,6 +210,13 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
            (EffectParam("kappa", "1", 0.01, 100.0, "stiffness factor"),),
            (), _stiffness, "presliding cycles of several amplitudes"),
 )}
+
+
+def format_values(name: str, values: Mapping[str, float], units: Mapping[str, str]) -> str:
+    """"h = -0.589, n_c = 8.78 reversals, …": an effect's values with their units."""
+    eff = EFFECTS.get(name)
+    unit = {p.name: p.unit_in(units) for p in eff.params} if eff is not None else {}
+    return ", ".join(f"{k} = {v:.4g}" + (f" {unit[k]}" if unit.get(k) else "") for k, v in values.items())
 
 
 def effect_of(name) -> Effect:

@@ -139,3 +139,15 @@ def test_softening_factor_scales_the_presliding_stiffness(kuka):
         dx = x[k] - x[2000]
         expected = np.interp(kappa * dx, z_knots, F_knots)
         assert np.allclose(fh[k] - fh[2000], expected, rtol=0.03), kappa
+
+
+def test_effect_values_are_printed_with_the_units_of_the_parameter_set():
+    from leuven_friction.model.effects import format_values
+
+    txt = format_values("cyclic_softening", {"h": -0.5888, "n_c": 8.778, "min_excursion": 3.641e-7},
+                        {"position": "m", "force": "N", "time": "s"})
+    assert txt == "h = -0.5888, n_c = 8.778 reversals, min_excursion = 3.641e-07 m"
+    assert format_values("time_drift", {"b": 0.1, "tau": 30.0, "t0": 0.0}, {"position": "rad"}) == \
+        "b = 0.1, tau = 30 s, t0 = 0 s"
+    assert "v_ref = 0.02 rad/s" in format_values("rate_stiffness", {"c1": 0.1, "v_ref": 0.02},
+                                                 {"position": "rad", "time": "s"})

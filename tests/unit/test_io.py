@@ -155,3 +155,46 @@ def test_a_wide_file_reads_only_the_signal_columns(tmp_path):
         write_table(narrow, tmp_path / f"nopos.{fmt}")
         with pytest.raises(DataError, match=r"no column for position \(columns: time, channel 0"):
             load_recording(tmp_path / f"nopos.{fmt}", require=("time", "position"))
+
+
+def _lab_rows(n=40):
+    t = np.arange(n) * 1.0  # ms
+    x = 10.0 * np.sin(t / 7.0)  # µm
+    f = 300.0 * np.cos(t / 7.0)  # mN
+    return t, x, f
+
+
+def test_european_lab_exports_read_the_same_numbers(tmp_path):
+    # the same table as a tab-separated file with decimal commas, in Windows-1252 (µ as one byte),
+    # with German headers named by --columns without their units, and as plain UTF-8 CSV
+    t, x, f = _lab_rows()
+    plain = tmp_path / "plain.csv"
+    plain.write_text("Time [ms],Position [µm],Force [mN]\n"
+                     + "".join(f"{a:.6g},{b:.6g},{c:.6g}\n" for a, b, c in zip(t, x, f)), encoding="utf-8")
+    euro = tmp_path / "euro.tsv"
+    euro.write_bytes(("Zeit [ms]\tWeg [µm]\tKraft [mN]\n"
+                      + "".join(f"{a:.6g}\t{b:.6g}\t{c:.6g}\n".replace(".", ",") for a, b, c in zip(t, x, f))
+                      ).encode("cp1252"))
+    ref = load_recording(plain)
+    for rec in (load_recording(euro), load_recording(euro, columns={"time": "Zeit", "position": "Weg", "force": "Kraft"})):
+        assert np.allclose(rec.time, ref.time) and np.allclose(rec.position, ref.position)
+        assert np.allclose(rec.force, ref.force)
+        assert np.allclose(rec.position.max(), 1e-5, rtol=1e-3)  # µm read as such: SI metres
+        assert any("Windows-1252" in n for n in rec.notes), rec.notes
+    with pytest.raises(DataError, match="column 'Zeitstempel' given for time is not in the file"):
+        load_recording(euro, columns={"time": "Zeitstempel"})
+
+
+def test_a_line_with_an_extra_field_and_time_going_back_are_refused_in_the_files_terms(tmp_path):
+    t, x, f = _lab_rows()
+    rows = [f"{a:g},{b:.6g},{c:.6g}" for a, b, c in zip(t, x, f)]
+    ragged = tmp_path / "ragged.csv"
+    ragged.write_text("Time [ms],Position [µm],Force [mN]\n" + "\n".join(rows[:9] + [rows[9] + ",5"] + rows[10:]) + "\n")
+    with pytest.raises(DataError, match=r"ragged.csv: line 11 has 4 fields, the header 3"):
+        load_recording(ragged)
+    back = tmp_path / "back.csv"
+    rows[20], rows[21] = rows[21], rows[20]
+    back.write_text("Time [ms],Position [µm],Force [mN]\n" + "\n".join(rows) + "\n")
+    # the message quotes the file's own numbers (ms), not the converted seconds
+    with pytest.raises(DataError, match=r"row 23: time 20 does not increase \(previous 21\)"):
+        load_recording(back)
