@@ -206,7 +206,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     if ignored:
         notes.append(f"ignored columns: {', '.join(ignored)}")
     if encoding != "utf-8-sig":
-        notes.append(f"not UTF-8: read as {encoding} (Windows-1252)")
+        notes.append("not UTF-8: read as Windows-1252")
     rec.notes = notes
 
     n = len(rec.time)

@@ -1005,10 +1005,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     rise = np.diff(np.asarray(tc.F, dtype=float)) if NC else np.zeros(0)
 
     def side(s, f):
-        # a side the fit made Coulomb (F_s held at F_c) stays Coulomb: its F_s follows F_c's
-        # factor, or the refit would write a Stribeck peak, even a dip, that the file holds as equal
-        coulomb = math.isclose(s.Fs, s.Fc, rel_tol=1e-12)
-        return StribeckSide(Fs=s.Fs * f[1 if coulomb else 0], Fc=s.Fc * f[1], vs=s.vs, delta=s.delta, sigma2=s.sigma2)
+        return StribeckSide(Fs=s.Fs * f[0], Fc=s.Fc * f[1], vs=s.vs, delta=s.delta, sigma2=s.sigma2)
 
     def unpack(u):
         g, kk, ln, ls = math.exp(u[0]), math.exp(u[1]), u[2], u[3]
@@ -1942,6 +1939,13 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         unc = {k: v for k, v in params.uncertainty.items()
                if not (k.startswith("stribeck.") or k.startswith("transition_curve") or k in ("n", "sigma1"))}
         prov = dict(params.provenance)
+        # what the refit moved is no longer held at the value the fit's provenance gives (F_s
+        # "held at F_c", n "fixed at 7"): those entries go, and provenance.diagnosis says how
+        # they were refitted; what it left (vs, δ, σ2) stays held
+        refitted = ("n", "sigma1", "transition_curve") + tuple(f"stribeck.{sd}.{k}" for sd in ("positive", "negative")
+                                                              for k in ("Fs", "Fc"))
+        if isinstance(prov.get("held"), dict):
+            prov["held"] = {k: v for k, v in prov["held"].items() if not k.startswith(refitted)}
         held = [e["name"] for e in final.entries if e["name"] not in named]
         prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation)"
                              + (f", {', '.join(held)} held with them" if held else "") + f"; level ×{final.g:.4g}, "

@@ -69,6 +69,23 @@ def test_diagnose_cli_writes_json_html_yaml_that_simulate_reproduces(tmp_path):
     assert rms < 0.7 * res["steps"][0]["rms"]
 
 
+def test_the_model_written_from_a_fitted_file_holds_only_what_stayed_held(tmp_path):
+    # a fitted file holds F_s at F_c and n at 7; the diagnosis refits both (the S(v) levels, n,
+    # σ1 by output error) when it names an effect: the file it writes no longer says they are
+    # held, says how they were refitted, and still holds what it left (v_s, δ, σ2)
+    import yaml
+
+    fitted, written = tmp_path / "fit.yaml", tmp_path / "diag.yaml"
+    assert main(["fit", "sample:effect_position_periodic", "--out", str(fitted)]) == 0
+    held_before = yaml.safe_load(fitted.read_text())["provenance"]["held"]
+    assert "stribeck.positive.Fs" in held_before and "n" in held_before
+    assert main(["diagnose", "sample:effect_position_periodic", "--params", str(fitted), "--out", str(written)]) == 0
+    prov = yaml.safe_load(written.read_text())["provenance"]
+    assert "position_ripple" in prov["diagnosis"] and "the S(v) levels" in prov["diagnosis"]
+    assert not any(k.endswith((".Fs", ".Fc")) or k in ("n", "sigma1") for k in prov["held"]), prov["held"]
+    assert {k for k in held_before if k.endswith((".vs", ".delta", ".sigma2"))} <= set(prov["held"])
+
+
 def test_diagnose_cli_bad_input_is_one_line(tmp_path, capsys):
     bad = tmp_path / "bad.csv"
     bad.write_text("time,temperature\n" + "".join(f"{i},{20 + i}\n" for i in range(30)))
