@@ -53,6 +53,7 @@ out-of-sample evidence, add it, refit, look again.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -62,6 +63,8 @@ from scipy.signal import savgol_filter
 from scipy.stats import rankdata
 
 from ..model import FrictionParams, TransitionCurve, simulate_displacement
+from ..model.errors import ParameterError
+from ..model.params import get_value
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, format_values, significant_reversals
 from .data import DataError, Recording
@@ -1620,6 +1623,29 @@ EXPLAINS = {"time_drift": "time", "normal_load": "load", "position_ripple": "pos
             "presliding_stiffness": "velocity"}
 
 
+def moved_from_held(held, before: FrictionParams, after: FrictionParams, g: float, curve_reshaped: bool) -> dict:
+    """{path: (before, after)} of the parameters a fit's provenance holds that the model written
+    moved beyond the common level g (``bake`` scales every force by it): a Coulomb side's F_s
+    refitted apart from F_c, n or σ1 refitted, the curve reshaped segment by segment. A side
+    with nothing in the record to move it, or v_s, δ, σ2 the refit holds, stays held."""
+    if not isinstance(held, Mapping):
+        return {}
+    out = {}
+    for path in held:
+        if path.startswith("transition_curve"):
+            if curve_reshaped:
+                out[path] = ("the file's shape", "reshaped")
+            continue
+        try:
+            b, a = float(get_value(before, path)), float(get_value(after, path))
+        except (ParameterError, TypeError, ValueError):
+            continue
+        scale = g if path.endswith((".Fs", ".Fc", ".sigma2")) or path == "sigma1" else 1.0
+        if not math.isclose(a, scale * b, rel_tol=1e-6, abs_tol=1e-300):
+            out[path] = (f"{b:.4g}", f"{a:.4g}")
+    return out
+
+
 def bake(params: FrictionParams, g: float, k0: float) -> FrictionParams:
     """The parameters with every force scaled by g and the presliding stiffness by κ0 —
     exactly the model whose friction is g·F with F_d(κ0·z)."""
@@ -1939,21 +1965,22 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         unc = {k: v for k, v in params.uncertainty.items()
                if not (k.startswith("stribeck.") or k.startswith("transition_curve") or k in ("n", "sigma1"))}
         prov = dict(params.provenance)
-        # what the refit moved is no longer held at the value the fit's provenance gives (F_s
-        # "held at F_c", n "fixed at 7"): those entries go, and provenance.diagnosis says how
-        # they were refitted; what it left (vs, δ, σ2) stays held
-        refitted = ("n", "sigma1", "transition_curve") + tuple(f"stribeck.{sd}.{k}" for sd in ("positive", "negative")
-                                                              for k in ("Fs", "Fc"))
-        if isinstance(prov.get("held"), dict):
-            prov["held"] = {k: v for k, v in prov["held"].items() if not k.startswith(refitted)}
+        written_params = bake(final_base.replace(effects=()), final.g, final.k0)
+        moved = moved_from_held(prov.get("held"), params, written_params, final.g, refit_curve)
+        if moved:
+            # no longer held at the value the fit's provenance gives (F_s "held at F_c", n "fixed
+            # at 7"): the entry goes, and provenance.diagnosis says where the refit took it
+            prov["held"] = {k: v for k, v in prov["held"].items() if k not in moved}
         held = [e["name"] for e in final.entries if e["name"] not in named]
         prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation)"
                              + (f", {', '.join(held)} held with them" if held else "") + f"; level ×{final.g:.4g}, "
                              f"presliding stiffness ×{final.k0:.4g}, n {params.n:.3g} → {final_base.n:.3g}, "
                              f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, the S(v) levels"
                              + (", the transition curve's segments" if refit_curve else "")
-                             + f" refitted by output error in {cmp_.space}")
-        new_params = bake(final_base.replace(effects=()), final.g, final.k0).replace(
+                             + f" refitted by output error in {cmp_.space}"
+                             + (f"; moved from held: {', '.join(f'{k} {a} → {b}' for k, (a, b) in moved.items())}"
+                                if moved else ""))
+        new_params = written_params.replace(
             effects=tuple(_clean_entry(e, cmp_) for e in final.entries), uncertainty=unc, provenance=prov)
     ctx = cmp_.context()
     explaining = {"time": ("time (s)", cmp_.time), "position": ("position", cmp_.path),

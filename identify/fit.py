@@ -295,6 +295,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         held["transition_curve"] = f"{why_curve}: kept {start}"
         held["n"] = f"{why_curve}: kept {start}"
     if all(d.fit is None for d in decisions.values()) and tfit is None:
+        if why_curve != "no presliding data":
+            raise IdentificationError(f"nothing to fit: no constant-velocity levels, and {why_curve} (the segments "
+                                      f"ran to their limit): more presliding cycles, or --params to start from")
         raise IdentificationError("nothing to fit: the data hold neither constant-velocity levels nor presliding "
                                   "branches (force ramps with reversals, or reversals of a motion with measured friction)")
     for k in ("sigma1", "inertia"):

@@ -56,7 +56,8 @@ def sniff(lines: Iterable[str]) -> tuple[str, str]:
     ``#`` comment), else whitespace; a semicolon table with a digit, comma, digit in its
     first SNIFF_ROWS data lines uses the decimal comma (European CSV), and
     so does a tab- or whitespace-separated one whose first data lines have a digit, comma,
-    digit and no digit, point, digit (where a comma cannot separate columns)."""
+    digits (other than exactly three, which may group thousands) and no digit, point, digit
+    (where a comma cannot separate columns)."""
     rows = [ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")]
     first = rows[0] if rows else ""
     counts = {"\t": first.count("\t"), ";": first.count(";"), ",": first.count(",")}
@@ -65,7 +66,10 @@ def sniff(lines: Iterable[str]) -> tuple[str, str]:
     data = "\n".join(rows[1:SNIFF_ROWS + 1])  # a first row of whole numbers says nothing: look at a few
     if sep == ";" and re.search(r"\d,\d", data):
         decimal = ","
-    elif sep in ("\t", r"\s+") and re.search(r"\d,\d", data) and not re.search(r"\d\.\d", data):
+    elif (sep in ("\t", r"\s+") and not re.search(r"\d\.\d", data)
+          and re.search(r"\d,(\d{1,2}|\d{4,})(?!\d)", data)):
+        # a comma followed by exactly three digits everywhere may group thousands ("1,234"):
+        # only other counts of digits make it a decimal mark
         decimal = ","
     return sep, decimal
 
@@ -102,32 +106,60 @@ def _head_text(path: Path) -> tuple[str, str]:
     return decode_text(head, path)
 
 
+RAGGED_BLOCK = 1 << 23  # bytes ``ragged_line`` counts at once (its memory: a few times this)
+
+
 def ragged_line(path: Path, sep: str) -> tuple[int, int, int] | None:
-    """(line number, fields, fields of the header) of the first line of a delimited table whose
-    count of fields differs from the header's, or None. Reading only some columns, pandas lets
-    such a line through, its extra field dropped. Counted on the bytes at once (a separator is
-    one byte in UTF-8 and Windows-1252 alike); a file with quotes is not checked, as a quoted
-    field may hold the separator."""
+    """(line number, fields, fields of the header) of the first line of a delimited table with
+    more fields than its header, or None. Reading only some columns, pandas drops such a
+    line's extra field silently (and with one more field on every line it would take the first
+    column for an index); fewer fields leave a gap, which the reader of each used column
+    reports. Counted on the bytes, block by block (a separator is one byte in UTF-8 and
+    Windows-1252 alike); a file with quotes, or with a comment after values, is not checked, as
+    those may hold the separator."""
     if sep == r"\s+":
         return None
-    buf = np.fromfile(path, dtype=np.uint8)
-    if len(buf) == 0 or np.any(buf == ord('"')):
-        return None
-    nl = np.flatnonzero(buf == ord("\n"))
-    starts = np.concatenate([[0], nl + 1])
-    ends = np.concatenate([nl, [len(buf)]])
-    # the line of each separator is the count of newlines before it
-    fields = np.bincount(np.searchsorted(nl, np.flatnonzero(buf == ord(sep))), minlength=len(starts)) + 1
-    keep = starts < len(buf)
-    starts, ends, fields = starts[keep], ends[keep], fields[keep]
-    first = buf[np.minimum(starts, len(buf) - 1)]
-    # blank lines (or a lone carriage return) and # comments are not rows
-    row = (ends > starts) & (first != ord("#")) & ~((first == ord("\r")) & (ends - starts == 1))
-    idx = np.flatnonzero(row)
-    if len(idx) < 2:
-        return None
-    off = idx[1:][fields[idx[1:]] != fields[idx[0]]]
-    return None if len(off) == 0 else (int(off[0]) + 1, int(fields[off[0]]), int(fields[idx[0]]))
+    header, before, carry = None, 0, b""
+    with open(path, "rb") as fh:
+        head = fh.read(3)
+        carry = b"" if head == b"\xef\xbb\xbf" else head  # the byte-order mark is not in the first line
+        while True:
+            block = fh.read(RAGGED_BLOCK)
+            data = carry + block
+            if not data:
+                return None
+            if block:  # the unfinished last line waits for the next block
+                cut = data.rfind(b"\n") + 1
+                data, carry = data[:cut], data[cut:]
+                if not data:
+                    continue
+            else:
+                carry = b""
+            buf = np.frombuffer(data, dtype=np.uint8)
+            if np.any(buf == ord('"')):
+                return None
+            nl = np.flatnonzero(buf == ord("\n"))
+            starts = np.concatenate([[0], nl + 1])
+            starts = starts[starts < len(buf)]
+            if np.any(~np.isin(np.flatnonzero(buf == ord("#")), starts)):
+                return None
+            fields = np.bincount(np.searchsorted(nl, np.flatnonzero(buf == ord(sep))), minlength=len(starts))
+            fields = fields[:len(starts)] + 1
+            first = buf[starts]
+            nxt = np.concatenate([starts[1:], [len(buf)]])
+            # a row: not a # comment, not blank (a lone \r, or whitespace without separators
+            # counts as one field and cannot outnumber a header)
+            row = (first != ord("#")) & ~((nxt - starts <= 2) & np.isin(first, (ord("\r"), ord("\n"))))
+            idx = np.flatnonzero(row)
+            if header is None and len(idx):
+                header, idx = int(fields[idx[0]]), idx[1:]
+            if header is not None:
+                over = idx[fields[idx] > header]
+                if len(over):
+                    return before + int(over[0]) + 1, int(fields[over[0]]), header
+            before += len(starts)
+            if not block:
+                return None
 
 
 def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
@@ -141,14 +173,26 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
         lines = lines[:-1]  # the last line of the block may be cut
     sep, decimal = sniff(lines)
     opts = dict(sep=sep, engine="c" if sep != r"\s+" else "python", comment="#", skip_blank_lines=True,
-                decimal=decimal, encoding=encoding)
-    try:
+                decimal=decimal)
+
+    def read(enc):
         if usecols is None:
-            df = pd.read_csv(path, **opts)
-        else:
-            names = [str(c) for c in pd.read_csv(path, nrows=0, **opts).columns]
-            df = pd.read_csv(path, usecols=lambda c: usecols(str(c)), **opts)
-            df.attrs["columns_in_file"] = names
+            return pd.read_csv(path, encoding=enc, **opts)
+        names = [str(c) for c in pd.read_csv(path, nrows=0, encoding=enc, **opts).columns]
+        df = pd.read_csv(path, usecols=lambda c: usecols(str(c)), encoding=enc, **opts)
+        df.attrs["columns_in_file"] = names
+        return df
+
+    try:
+        try:
+            df = read(encoding)
+        except UnicodeDecodeError:
+            if encoding == LEGACY_ENCODING:
+                raise
+            # UTF-8 as far as the sniffed head went, not beyond it
+            encoding = LEGACY_ENCODING
+            df = read(encoding)
+        if usecols is not None:
             bad = ragged_line(path, sep)
             if bad is not None:
                 raise DataError(f"{path}: line {bad[0]} has {bad[1]} fields, the header {bad[2]}")

@@ -42,9 +42,11 @@ def header_columns(content: bytes) -> list[str]:
     """The column names of a CSV/TSV upload (the loader's separator guess), or []."""
     import pandas as pd
 
+    from ...identify.io import decode_text
+
     try:
-        text = content.decode("utf-8-sig")
-    except UnicodeDecodeError:
+        text, _ = decode_text(content, "upload")  # UTF-8, or Windows-1252 as the loader reads it
+    except DataError:
         return []
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     if not lines:

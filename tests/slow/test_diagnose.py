@@ -72,7 +72,7 @@ def test_diagnose_cli_writes_json_html_yaml_that_simulate_reproduces(tmp_path):
 def test_the_model_written_from_a_fitted_file_holds_only_what_stayed_held(tmp_path):
     # a fitted file holds F_s at F_c and n at 7; the diagnosis refits both (the S(v) levels, n,
     # σ1 by output error) when it names an effect: the file it writes no longer says they are
-    # held, says how they were refitted, and still holds what it left (v_s, δ, σ2)
+    # held, says where they moved, and still holds what it left (v_s, δ, σ2)
     import yaml
 
     fitted, written = tmp_path / "fit.yaml", tmp_path / "diag.yaml"
@@ -82,7 +82,9 @@ def test_the_model_written_from_a_fitted_file_holds_only_what_stayed_held(tmp_pa
     assert main(["diagnose", "sample:effect_position_periodic", "--params", str(fitted), "--out", str(written)]) == 0
     prov = yaml.safe_load(written.read_text())["provenance"]
     assert "position_ripple" in prov["diagnosis"] and "the S(v) levels" in prov["diagnosis"]
-    assert not any(k.endswith((".Fs", ".Fc")) or k in ("n", "sigma1") for k in prov["held"]), prov["held"]
+    moved = [k for k in held_before if k not in prov["held"]]
+    assert "n" in moved and any(k.endswith(".Fs") for k in moved), prov
+    assert all(f"{k} " in prov["diagnosis"].split("moved from held:")[1] for k in moved), prov["diagnosis"]
     assert {k for k in held_before if k.endswith((".vs", ".delta", ".sigma2"))} <= set(prov["held"])
 
 

@@ -441,3 +441,23 @@ def test_friction_from_force_reads_a_record_whose_sampling_rate_changes():
     # read with the median interval, the 500 Hz part would be off by most of the inertial force
     wrong = uniform_filter1d(f, L, mode="nearest") - I * (np.roll(v, -2) - np.roll(v, 2)) / (4 * 5e-3)
     assert np.max(np.abs(wrong - want)[L:-L][t[L:-L] > 3.1]) > 0.5 * I * A * w * w
+
+
+def test_moved_from_held_tells_a_refit_from_the_common_level():
+    from leuven_friction.identify.diagnose import bake, moved_from_held
+    from leuven_friction.model import Stribeck, StribeckSide, default_params
+
+    p = default_params()
+    pos = p.stribeck.positive
+    coulomb = p.replace(stribeck=Stribeck(StribeckSide(Fs=pos.Fc, Fc=pos.Fc, vs=pos.vs, delta=pos.delta,
+                                                       sigma2=pos.sigma2), p.stribeck.negative))
+    held = {"stribeck.positive.Fs": "held at Fc", "stribeck.positive.vs": "held", "n": "fixed at 7",
+            "inertia": "not estimated", "transition_curve": "kept"}
+    # every force scaled by the level g (and z by κ0): nothing held has moved
+    assert moved_from_held(held, coulomb, bake(coulomb, 1.3, 0.8), 1.3, False) == {}
+    # F_s refitted apart from F_c, n refitted, the curve reshaped: those three moved
+    q = coulomb.replace(n=3.5, stribeck=Stribeck(StribeckSide(Fs=1.1 * pos.Fc, Fc=pos.Fc, vs=pos.vs, delta=pos.delta,
+                                                              sigma2=pos.sigma2), p.stribeck.negative))
+    moved = moved_from_held(held, coulomb, bake(q, 1.3, 0.8), 1.3, True)
+    assert set(moved) == {"stribeck.positive.Fs", "n", "transition_curve"}
+    assert moved["n"] == (f"{coulomb.n:.4g}", "3.5")

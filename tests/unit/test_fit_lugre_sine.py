@@ -103,3 +103,13 @@ def test_the_cli_says_where_held_and_simulated_values_come_from(tmp_path, capsys
     err = capsys.readouterr().err
     assert "no --params: simulated with the built-in default" in err
     assert "its parameters are in rad, N*m, the recording in m, N" in err
+
+
+def test_no_branch_of_the_shipped_samples_counts_as_slid():
+    # their presliding branches span up to 17 times each other (an internal loop against a full
+    # one): far inside the 100 times that marks a branch that slid
+    from leuven_friction.sample_data import resolve
+
+    for name in ("presliding_encoder", "presliding_proximity", "session_mixed", "effect_position_periodic"):
+        res = fit_recordings([load_recording(resolve(f"sample:{name}"))], refine=False)
+        assert res.n_branches >= 5 and not any("they slid" in m for m in res.notes), (name, res.notes)

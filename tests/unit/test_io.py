@@ -198,3 +198,45 @@ def test_a_line_with_an_extra_field_and_time_going_back_are_refused_in_the_files
     # the message quotes the file's own numbers (ms), not the converted seconds
     with pytest.raises(DataError, match=r"row 23: time 20 does not increase \(previous 21\)"):
         load_recording(back)
+
+
+def test_ragged_line_only_refuses_a_line_with_more_fields_than_the_header(tmp_path):
+    from leuven_friction.identify.io import ragged_line
+
+    def check(name, text, sep=","):
+        f = tmp_path / name
+        f.write_bytes(text if isinstance(text, bytes) else text.encode())
+        return ragged_line(f, sep)
+
+    assert check("ok.csv", "a,b,c\n1,2,3\n4,5,6") is None  # no newline at the end
+    assert check("bom.csv", b"\xef\xbb\xbf# note\na,b,c\n1,2,3\n") is None  # a mark, then a comment
+    assert check("blank.csv", "a,b,c\r\n1,2,3\r\n   \r\n\r\n4,5,6\r\n") is None  # blank lines, CRLF
+    assert check("short.csv", "a,b,c\n1,2,3\n4,5\n") is None  # fewer fields: the column reader's business
+    assert check("quoted.csv", 'a,"b, c",d\n1,2,3\n') is None  # a quote may hold the separator: not checked
+    assert check("more.csv", "# c\na,b,c\n1,2,3\n\n4,5,6,7\n") == (5, 4, 3)
+    assert check("more.tsv", "a\tb\n1\t2\n3\t4\t5\n", "\t") == (3, 3, 2)
+    # the same over block boundaries: the line number counts across blocks
+    import leuven_friction.identify.io as io_mod
+
+    body = "a,b,c\n" + "1,2,3\n" * 5000 + "1,2,3,4\n"
+    old = io_mod.RAGGED_BLOCK
+    io_mod.RAGGED_BLOCK = 1000
+    try:
+        assert check("long.csv", body) == (5002, 4, 3)
+    finally:
+        io_mod.RAGGED_BLOCK = old
+
+
+def test_decimal_mark_of_tab_files_and_thousands(tmp_path):
+    assert sniff(["a\tb", "1\t2", "3\t4,5"]) == ("\t", ",")
+    assert sniff(["a\tb", "1,234\t2", "5,678\t4"]) == ("\t", ".")  # three digits after each comma: ambiguous
+    assert sniff(["a\tb", "1,5\t2.5"]) == ("\t", ".")  # a point somewhere: the comma is no decimal mark
+
+
+def test_windows_1252_after_the_sniffed_head(tmp_path):
+    # UTF-8 as far as the first 64 KiB go, then a byte of Windows-1252 in a column not used
+    rows = "".join(f"{i},{0.001 * i:.6g},{np.sin(i):.6g},ok\n" for i in range(6000))
+    f = tmp_path / "late.csv"
+    f.write_bytes(("Time [ms],Position [mm],Force [N],Bemerkung\n" + rows).encode() + "5999,1,2,Ma\xdf\n".encode("cp1252"))
+    with pytest.raises(DataError, match="row 6002: time 5999 does not increase"):
+        load_recording(f)  # read through to the last line (which repeats a time stamp)
