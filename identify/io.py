@@ -141,7 +141,8 @@ def ragged_line(path: Path, sep: str) -> tuple[int, int, int] | None:
             nl = np.flatnonzero(buf == ord("\n"))
             starts = np.concatenate([[0], nl + 1])
             starts = starts[starts < len(buf)]
-            if np.any(~np.isin(np.flatnonzero(buf == ord("#")), starts)):
+            hashes = np.flatnonzero(buf == ord("#"))
+            if np.any(buf[hashes[hashes > 0] - 1] != ord("\n")):
                 return None
             fields = np.bincount(np.searchsorted(nl, np.flatnonzero(buf == ord(sep))), minlength=len(starts))
             fields = fields[:len(starts)] + 1
@@ -149,10 +150,14 @@ def ragged_line(path: Path, sep: str) -> tuple[int, int, int] | None:
             nxt = np.concatenate([starts[1:], [len(buf)]])
             # a row: not a # comment, not blank (a lone \r, or whitespace without separators
             # counts as one field and cannot outnumber a header)
-            row = (first != ord("#")) & ~((nxt - starts <= 2) & np.isin(first, (ord("\r"), ord("\n"))))
+            row = (first != ord("#")) & ~((nxt - starts <= 2) & ((first == ord("\r")) | (first == ord("\n"))))
             idx = np.flatnonzero(row)
-            if header is None and len(idx):
-                header, idx = int(fields[idx[0]]), idx[1:]
+            if header is None:
+                # the header: the first row with more than whitespace on it
+                for i in idx:
+                    if data[starts[i]:nxt[i]].strip():
+                        header, idx = int(fields[i]), idx[idx > i]
+                        break
             if header is not None:
                 over = idx[fields[idx] > header]
                 if len(over):

@@ -211,6 +211,8 @@ def test_ragged_line_only_refuses_a_line_with_more_fields_than_the_header(tmp_pa
     assert check("ok.csv", "a,b,c\n1,2,3\n4,5,6") is None  # no newline at the end
     assert check("bom.csv", b"\xef\xbb\xbf# note\na,b,c\n1,2,3\n") is None  # a mark, then a comment
     assert check("blank.csv", "a,b,c\r\n1,2,3\r\n   \r\n\r\n4,5,6\r\n") is None  # blank lines, CRLF
+    assert check("lead.csv", "   \n\t\na,b,c\n1,2,3\n") is None  # blank lines before the header
+    assert check("tail.csv", "a,b,c\n1,2,3 # x,y\n") is None  # a comment after values: not checked
     assert check("short.csv", "a,b,c\n1,2,3\n4,5\n") is None  # fewer fields: the column reader's business
     assert check("quoted.csv", 'a,"b, c",d\n1,2,3\n') is None  # a quote may hold the separator: not checked
     assert check("more.csv", "# c\na,b,c\n1,2,3\n\n4,5,6,7\n") == (5, 4, 3)
