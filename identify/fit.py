@@ -263,10 +263,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         z = knots_from_data(datasets, n) if knots is None else check_knots(knots, datasets)
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
         tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
-        flat = sorted(set(tfit.flat) | {i for i in range(1, len(tfit.F)) if not tfit.F[i] > tfit.F[i - 1] * (1 + 1e-9)})
+        flat = list(tfit.flat)
         if flat and knots is None and len(z) - len(flat) >= 2:
-            # a segment the likelihood makes flat (its increment underflows): the data do not
-            # resolve that knot; drop it and refit
+            # a segment the likelihood makes flat (its increment at the lower limit, 10⁻⁶ of the
+            # largest force change, below which no increment can go): the data do not resolve
+            # that knot; drop it and refit
             notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in flat)} not resolved "
                          f"by the data (flat segment): dropped")
             z = np.delete(z, flat)
@@ -279,9 +280,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                      f"an estimate)")
         tfit = None
         n_br = 0
-        why_curve = "the branches do not bound F_d"
+        unbounded = True
     else:
-        why_curve = "no presliding data"
+        unbounded = False
+    why_curve = "the branches do not bound F_d" if unbounded else "no presliding data"
     if tfit is not None:
         bad = [i for i in range(1, len(tfit.F)) if not (tfit.stderr[i] < 0.5 * (tfit.F[i] - tfit.F[i - 1]) + 0.5 * tfit.F[i])]
         if bad:
@@ -295,7 +297,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         held["transition_curve"] = f"{why_curve}: kept {start}"
         held["n"] = f"{why_curve}: kept {start}"
     if all(d.fit is None for d in decisions.values()) and tfit is None:
-        if why_curve != "no presliding data":
+        if unbounded:
             raise IdentificationError(f"nothing to fit: no constant-velocity levels, and {why_curve} (the segments "
                                       f"ran to their limit): more presliding cycles, or --params to start from")
         raise IdentificationError("nothing to fit: the data hold neither constant-velocity levels nor presliding "
