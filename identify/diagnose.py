@@ -32,7 +32,9 @@ out-of-sample evidence, add it, refit, look again.
    record and where its physics shows (steady gross sliding for a friction factor, the
    transitions after reversals for a stiffness effect). A BIC with the effective number of
    samples is reported as a second line. A candidate whose saturation scale ends at either
-   bound (a softening's n_c) has not been seen to settle within the session: it is listed as
+   bound (a softening's n_c: at most half the reversals where the strokes run in order of
+   speed, all of them elsewhere, ``softening_nc_max``) has not been seen to settle within the
+   session: it is listed as
    seen, not named (``Term.unsettled``; ``Settings.must_settle``, the default: over the
    hidden-effect suite on two seed sets, with the oracle and the fitted base, naming it put a
    false softening on 15 of 80 controls, requiring it on 2). Where the strokes' speeds do not
@@ -526,6 +528,21 @@ class Term:
 SETTLE_TOL = math.log(1.02)  # a scale within 2 % of a bound is at it
 
 
+def softening_nc_max(strokes: SpeedOrder | None) -> float:
+    """The largest n_c of a softening, as a fraction of the session's significant reversals.
+
+    Where the strokes run at speeds in order of the reversals (``stroke_order``, |ρ| ≥
+    SPEED_ORDER_RHO) a change still going on late in the session is also a stiffness following
+    the speed, so it must be seen nearly complete: n_c ≤ half the reversals (86 % of the change
+    by the session's end, its rate down to a seventh). Elsewhere that confound is absent and
+    n_c ≤ the reversals suffices (63 %, its rate down to a third): a change whose slowing down
+    the session shows. A contact's softening need not be exponential (one hyperbolic in the
+    count, 1/(1 + n/n_h), fits an n_c well above n_h), so the stricter bound everywhere left
+    true softenings on tribometers, whose passes cycle through their speeds, seen, not named."""
+    ordered = strokes is None or abs(strokes.rho) >= SPEED_ORDER_RHO
+    return 0.5 if ordered else 1.0
+
+
 def presliding_range(params: FrictionParams) -> float:
     """Displacement over which the transition curve reaches 90 % of its last knot's force."""
     tc = params.transition_curve
@@ -541,7 +558,9 @@ def ripple_min_wavelength(cmp_: Comparison) -> float:
     return max(2.0 * cmp_.z_presliding, 10.0 * cmp_.position_noise)
 
 
-def _terms_for(name: str, cmp_: Comparison) -> Term:
+def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None) -> Term:
+    """The free parameters of effect ``name`` on this comparison; ``strokes`` (``stroke_order``)
+    sets how far a softening must be seen to settle (``softening_nc_max``)."""
     t = cmp_.time
     T = float(t[-1] - t[0])
     if name == "time_drift":
@@ -564,12 +583,14 @@ def _terms_for(name: str, cmp_: Comparison) -> Term:
         nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1])
         return Term(name, {"min_excursion": cmp_.min_excursion},
                     # n_c ≥ 3: a change complete within a couple of reversals is a constant
-                    # stiffness factor, which the alternative's κ0 already holds; n_c ≤ half the
-                    # reversals: a change still far from saturating at the session's end is a
-                    # trend in the reversal count, which a schedule confounds with time and speed; one
-                    # fitted at either bound has not been seen settling, and the report says so
-                    # (``Term.unsettled``; unless ``Settings.must_settle`` is off it is not named)
-                    (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(3.0), math.log(max(nrev / 2, 3.5)))),
+                    # stiffness factor, which the alternative's κ0 already holds; n_c at most a
+                    # fraction of the reversals (``softening_nc_max``): a change still far from
+                    # saturating at the session's end is a trend in the reversal count, which a
+                    # schedule confounds with time and speed; one fitted at either bound has not
+                    # been seen settling, and the report says so (``Term.unsettled``; unless
+                    # ``Settings.must_settle`` is off it is not named)
+                    (("h", "lin", -0.9, 5.0),
+                     ("n_c", "log", math.log(3.0), math.log(max(nrev * softening_nc_max(strokes), 3.5)))),
                     settles="n_c")
     if name == "rate_stiffness":
         st = cmp_.params.stribeck
@@ -1828,7 +1849,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
             alt = beside_rate if (beside_rate is not None and EFFECTS[name].acts_on == "stiffness") else plain
             rss_null = alt.fit.rss
-            term = _terms_for(name, cmp_)
+            term = _terms_for(name, cmp_, strokes)
             u0 = screen(engine, name, term, alt.fit.entries, alt.u, alt.fit, allm)
             if u0 is None:
                 continue
@@ -1909,7 +1930,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         if winner.beside:
             cmp_.notes.append(f"{winner.name} was judged beside {winner.beside} (rate_stiffness, held with it in "
                               f"the model written, not named)")
-        cur_terms = winner.against.terms + [_terms_for(winner.name, cmp_)]
+        cur_terms = winner.against.terms + [_terms_for(winner.name, cmp_, strokes)]
         head = 2 if winner.against.fit_k0 else 1  # log g (and log κ0, refitted with it)
         k0 = winner.fit.k0
         refit = _fit(engine, cur_terms, np.concatenate([[math.log(winner.fit.g)], winner.fit.u[head:]]),

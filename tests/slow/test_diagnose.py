@@ -258,6 +258,26 @@ def test_a_stiffness_falling_in_time_on_cycled_strokes_is_not_named_a_softening(
     assert "changing with time would look the same" in d.text()
 
 
+def test_a_softening_that_slows_down_on_cycled_strokes_is_named_with_its_size():
+    # the generator's softening is hyperbolic in its own reversal count, 1 − h·(1 − 1/(1 + n/n_h)),
+    # h = 0.48, n_h = 3.4: by the tribometer's 23rd reversal 87 % of it has happened and it runs at
+    # a sixtieth of its first rate, yet an exponential fitted to it ends at an n_c well above
+    # n_h. Its strokes cycle through their speeds in three passes (ρ 0.48), so no stiffness
+    # following the speed makes that trend, and a change seen slowing down within the session
+    # (n_c below the reversal count, ``softening_nc_max``) is named. Its size: the hyperbola
+    # has dropped by h·23/(23 + n_h) = 0.42 by the session's end, an exponential with n_c inside
+    # the session by 63–99 % of its h
+    from synth.hidden import SUITE_RATE
+
+    df, truth, _ = make_case("tribometer", 1032, ("cyclic_softening",), rate=SUITE_RATE["tribometer"])
+    d = diagnose(to_recording(df), oracle_params(truth))
+    assert "cyclic_softening" in d.effects and not d.unsettled, d.text()
+    soft = next(e for e in d.params_after.effects if e["name"] == "cyclic_softening")["params"]
+    end = soft["h"] * -np.expm1(-23.0 / soft["n_c"])  # the exponential's change by the 23rd reversal
+    assert 3.0 < soft["n_c"] < 23.0, soft
+    assert -0.6 < end < -0.25, soft
+
+
 def test_fit_then_diagnose_on_fresh_controls_reaches_the_generators_own_base():
     # the user's path on recordings nobody here made: `fit` on the recording, then `diagnose`
     # with what it wrote (a transition curve the fit identified from a few presliding branches,
