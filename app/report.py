@@ -23,10 +23,10 @@ def diagnosis_html(d, source: str) -> str:
         parts.append(pio.to_html(fig, include_plotlyjs=(i == 0), full_html=False, config={"displaylogo": False}))
     title = f"Friction model diagnosis — {html.escape(source)}"
     steps = _table([[s["label"], f"{s['rms']:.4g}", f"{s['rms'] / d.noise:.2f}" if d.noise else "",
-                     f"{s['rms_free']:.4g}", format_values(s["name"], s.get("params") or {}, d.params_before.units)]
+                     f"{s['rms_free']:.4g}", format_values(s["name"], s.get("params") or {}, d.params_before.units, s.get("sd"))]
                     for s in d.steps],
                    ["step", "RMS gap of the model written", "× noise floor", "RMS beside a free S(v) (decided on)",
-                    "effect parameters"])
+                    "effect parameters (± 1 σ: jackknife over the folds)"])
     conf = ""
     if d.confounded:
         conf = "<h2>Confounded candidates</h2>" + _table(

@@ -1220,6 +1220,7 @@ class Evidence:
     against: Alternative | None = field(repr=False, default=None)  # the alternative it is judged against
     rms_alt: float = 0.0  # that alternative's in-sample RMS
     unsettled: str | None = None  # why its change is not seen settling within the session (``Term.unsettled``)
+    fold_entries: list | None = field(repr=False, default=None)  # per fold: the entries refitted without it
 
     @property
     def beside(self) -> str | None:
@@ -1288,7 +1289,7 @@ class Alternative:
         candidate comes near the threshold in-sample, the alternative is never cross-validated."""
         if self.sse is None:
             u = np.concatenate([[math.log(self.fit.g)], self.u])
-            self.sse, self.preds = cross_validate(engine, self.terms, u, masks, k0, fit_k0=self.fit_k0)
+            self.sse, self.preds, _ = cross_validate(engine, self.terms, u, masks, k0, fit_k0=self.fit_k0)
         return self.sse, self.preds
 
 
@@ -1321,16 +1322,46 @@ CV_NFEV_STIFFNESS = 10  # … where κ0 and a stiffness varying with speed are r
 
 
 def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list, k0: float, fit_k0: bool = False) -> tuple:
-    """Held-out SSE per fold, and the held-out predictions, refitting on the other folds."""
+    """Held-out SSE per fold, the held-out predictions, and each fold's effect entries (fitted
+    on the other folds)."""
     meas = engine.c.measured
     sse = np.zeros(len(masks))
-    preds = []
+    preds, entries = [], []
     nfev = (CV_NFEV_STIFFNESS if fit_k0 else CV_NFEV) if engine.c.space == "friction" else 5
     for i, held in enumerate(masks):
         fr = _fit(engine, terms, u_full, ~held & engine.scored, fit_k0=fit_k0, k0=k0, max_nfev=nfev)
         sse[i] = engine.score((meas - fr.pred)[held])
         preds.append(fr.pred)
-    return sse, preds
+        entries.append(fr.entries)
+    return sse, preds, entries
+
+
+def jackknife_sd(full: float, folds, *, angle: bool = False) -> float:
+    """Delete-a-group jackknife standard error of an estimate from its k refits each leaving
+    one fold out: √((k − 1)/k · Σ(θ_i − θ̄)²). For the mean of k equal groups it is exactly
+    the standard error s/√n. An angle's deviations are taken from the full estimate, wrapped
+    to (−π, π], so a phase near ±π does not count a turn as spread."""
+    d = np.asarray(folds, dtype=np.float64) - full
+    if angle:
+        d = np.angle(np.exp(1j * d))
+    k = len(d)
+    return float(math.sqrt((k - 1) / k * np.sum((d - d.mean()) ** 2))) if k >= 2 else float("nan")
+
+
+def effect_sds(terms: list, full: list, folds: list, named) -> dict:
+    """{effect: {parameter: σ}} for the named effects among ``terms``: each free parameter's
+    jackknife σ (``jackknife_sd``) over the cross-validation's leave-one-fold-out refits
+    ``folds`` around the fit on every fold, ``full`` (entries in the order of ``terms``). The
+    refits are beside the alternative's free steady curve: σ says how far the estimate moves
+    with the data, not how far its shape is from the contact's."""
+    out = {}
+    for j, term in enumerate(terms):
+        if term.name not in named:
+            continue
+        est = full[j]["params"]
+        out[term.name] = {k: jackknife_sd(v, [f[j]["params"][k] for f in folds], angle=k.startswith("phase"))
+                          for k, v in est.items() if k not in term.fixed}
+    return out
 
 
 # ---------------------------------------------------------------- the result
@@ -1429,7 +1460,7 @@ class Diagnosis:
             L.append(f"  {s['label']:44s} {s['rms']:.4g} ({s['rms'] / nz:.2f} × noise)   "
                      f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
             if s.get("params"):
-                L.append("      " + format_values(s["name"], s["params"], self.params_before.units))
+                L.append("      " + format_values(s["name"], s["params"], self.params_before.units, s.get("sd")))
         L.append("Per regime (RMS before → after the refit → final; the noise floor of that regime's samples):")
         for k, r in self.regimes.items():
             nr = r["noise"]
@@ -1827,6 +1858,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     step_preds = [pred_given_c]
     scored = [pred_given + engine.nuisance(r0, allm, pred_given), null.pred]
     named = []
+    sds = {}  # the named effects' parameter σ (``effect_sds``)
     confounded = []
     cur, cur_terms, cur_u = null, list(prior_terms), null.u[2:] if len(null.u) > 2 else np.zeros(0)
     fits = [(list(prior_terms), np.concatenate([[math.log(null.g)], null.u[2:]]))]  # per step: terms, u
@@ -1865,7 +1897,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                                      fr, against=alt, rms_alt=rms_a))
                 continue
             null_sse, null_preds = alt.held_out(engine, masks, k0)
-            _, preds = cross_validate(engine, terms, fr.u, masks, k0, fit_k0=alt.fit_k0)
+            _, preds, fold_entries = cross_validate(engine, terms, fr.u, masks, k0, fit_k0=alt.fit_k0)
             sse = np.array([engine.score((meas - preds[i])[m]) for i, m in enumerate(masks)])
             # a fold where the candidate hardly changes the held-out prediction says nothing
             informative = np.array([np.sum((preds[i] - null_preds[i])[m] ** 2) > INFORMATIVE * max(null_sse[i], 1e-300)
@@ -1884,7 +1916,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                     failed_where = where_name
             evid.append(Evidence(name, fr.entries[-1]["params"], rms_c, sse, null_sse, informative, dbic,
                                  fr.pred - alt.fit.pred, fr, failed_where, where_name, gain_there, folds_there,
-                                 alt, rms_a, term.unsettled(fr.u[len(fr.u) - len(term.free):], strokes)))
+                                 alt, rms_a, term.unsettled(fr.u[len(fr.u) - len(term.free):], strokes),
+                                 fold_entries))
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         cands_out = [e.as_dict(s) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
         winner = None
@@ -1920,6 +1953,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         for c in cands_out:
             c["significant"] = c["name"] == winner.name
         named.append(winner.name)
+        # σ of every named effect's parameters from this round's cross-validation, where they were
+        # all refitted with the winner; the last round's go into the file written
+        sds = effect_sds(winner.against.terms + [_terms_for(winner.name, cmp_, strokes)], winner.fit.entries,
+                         winner.fold_entries, named)
         say(0.1 + 0.8 * (step + 1) / s.max_effects, f"adding {winner.name} and refitting everything together")
         # the model goes on as the one that was cross-validated: an effect judged beside a
         # stiffness varying with speed keeps it (held, not named: on clean recordings it takes up
@@ -1939,7 +1976,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         cur_u = refit.u[1:]
         steps.append({"label": f"+ {winner.name}", "name": winner.name, "params": dict(refit.entries[-1]["params"]),
                       "rms": _rms((meas - refit.model)[allm]), "rms_free": _rms((meas - refit.pred)[allm]),
-                      "heldout_gain": winner.heldout_gain,
+                      "heldout_gain": winner.heldout_gain, "sd": sds.get(winner.name, {}),
                       "folds": f"{winner.folds_improved}/{winner.folds_informative}"})
         scored.append(refit.pred)
         fits.append((list(cur_terms), refit.u))
@@ -1984,7 +2021,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     if named:
         # S(v) and the transition curve are rescaled: their old uncertainties no longer apply
         unc = {k: v for k, v in params.uncertainty.items()
-               if not (k.startswith("stribeck.") or k.startswith("transition_curve") or k in ("n", "sigma1"))}
+               if not (k.startswith("stribeck.") or k.startswith("transition_curve") or k in ("n", "sigma1")
+                       or k.startswith("effects."))}
+        # the named effects' σ (``effect_sds``); a held entry (rate_stiffness) and the fixed
+        # parameters (a reference, a start, a threshold) get none: they were not estimated
+        unc.update({f"effects.{i}.params.{k}": sd for i, e in enumerate(final.entries)
+                    for k, sd in sds.get(e["name"], {}).items() if math.isfinite(sd)})
         prov = dict(params.provenance)
         written_params = bake(final_base.replace(effects=()), final.g, final.k0)
         moved = moved_from_held(prov.get("held"), params, written_params, final.g, refit_curve)

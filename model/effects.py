@@ -212,11 +212,15 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
 )}
 
 
-def format_values(name: str, values: Mapping[str, float], units: Mapping[str, str]) -> str:
-    """"h = -0.589, n_c = 8.78 reversals, …": an effect's values with their units."""
+def format_values(name: str, values: Mapping[str, float], units: Mapping[str, str],
+                  sd: Mapping[str, float] | None = None) -> str:
+    """"h = -0.589 ± 0.04, n_c = 8.78 ± 1.2 reversals, …": an effect's values with their units,
+    and the 1-σ of those that were estimated (``sd``; a value without one was held)."""
     eff = EFFECTS.get(name)
     unit = {p.name: p.unit_in(units) for p in eff.params} if eff is not None else {}
-    return ", ".join(f"{k} = {v:.4g}" + (f" {unit[k]}" if unit.get(k) else "") for k, v in values.items())
+    sd = sd or {}
+    return ", ".join(f"{k} = {v:.4g}" + (f" ± {sd[k]:.2g}" if k in sd and math.isfinite(sd[k]) else "")
+                     + (f" {unit[k]}" if unit.get(k) else "") for k, v in values.items())
 
 
 def effect_of(name) -> Effect:

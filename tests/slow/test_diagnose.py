@@ -54,6 +54,17 @@ def test_diagnose_cli_writes_json_html_yaml_that_simulate_reproduces(tmp_path):
     assert "Plotly.newPlot" in html and "<script src=\"http" not in html  # plotly.js embedded
     p = load_params(out_yaml)
     assert [e["name"] for e in p.effects] == res["effects"]
+    # the drift's estimated parameters carry their 1-σ (the jackknife over the cross-validation's
+    # folds), in the file and in the report, and its start t0, fixed at the record's, none. The
+    # generator's drift, a viscosity law exp(−β·ΔT(t)) of a first-order temperature, has the
+    # candidate's time constant and ends at exp(−β) − 1: both within 3 σ (measured: 0.1 σ, 0.6 σ)
+    i = [e["name"] for e in p.effects].index("time_drift")
+    drift, unc = p.effects[i]["params"], p.uncertainty
+    assert {k for k in unc if k.startswith("effects.")} == {f"effects.{i}.params.b", f"effects.{i}.params.tau"}, unc
+    truth_drift = case.params["time_drift"]
+    assert abs(drift["tau"] - truth_drift["tau_T"]) < 3 * unc[f"effects.{i}.params.tau"], (drift, unc, truth_drift)
+    assert abs(drift["b"] - np.expm1(-truth_drift["beta_dT"])) < 3 * unc[f"effects.{i}.params.b"], (drift, unc)
+    assert set(res["steps"][2]["sd"]) == {"b", "tau"} and "± 1 σ" in html
     # the extended model, driven by the recorded motion through `simulate --input` along the
     # path the diagnosis compares (the logged position smoothed: its steps are the sensor's),
     # closes the gap the report states (the file logs friction as a reaction: compared with its

@@ -461,3 +461,52 @@ def test_moved_from_held_tells_a_refit_from_the_common_level():
     moved = moved_from_held(held, coulomb, bake(q, 1.3, 0.8), 1.3, True)
     assert set(moved) == {"stribeck.positive.Fs", "n", "transition_curve"}
     assert moved["n"] == (f"{coulomb.n:.4g}", "3.5")
+
+
+def test_jackknife_over_folds_is_the_standard_error_from_the_group_means():
+    # the mean of k equal groups, each refit leaving one group out: the delete-a-group
+    # jackknife's σ is the standard error of the mean estimated from the k group means,
+    # sd(group means)/√k (an identity, whatever the data)
+    from leuven_friction.identify.diagnose import jackknife_sd
+
+    rng = np.random.default_rng(5)
+    x = rng.normal(3.0, 2.0, 500)
+    groups = x.reshape(5, 100)
+    leave_out = [np.delete(groups, i, axis=0).mean() for i in range(5)]
+    expected = groups.mean(axis=1).std(ddof=1) / math.sqrt(5)
+    assert jackknife_sd(x.mean(), leave_out) == pytest.approx(expected, rel=1e-12)
+    # and across a large sample of such sessions its spread matches that of the estimate itself
+    est, sds = [], []
+    for _ in range(2000):
+        g = rng.normal(3.0, 2.0, (5, 40))
+        est.append(g.mean())
+        sds.append(jackknife_sd(g.mean(), [np.delete(g, i, axis=0).mean() for i in range(5)]))
+    assert np.sqrt(np.mean(np.square(sds))) == pytest.approx(2.0 / math.sqrt(200), rel=0.05)
+    assert np.std(est) == pytest.approx(2.0 / math.sqrt(200), rel=0.05)
+
+
+def test_jackknife_of_a_phase_does_not_count_a_turn_as_spread():
+    from leuven_friction.identify.diagnose import jackknife_sd
+
+    folds = [math.pi - 0.01, -math.pi + 0.01, math.pi - 0.03, -math.pi + 0.02, math.pi]
+    unwrapped = [f if f > 0 else f + 2 * math.pi for f in folds]
+    expected = jackknife_sd(math.pi, unwrapped)
+    assert expected < 0.05
+    assert jackknife_sd(math.pi, folds, angle=True) == pytest.approx(expected, rel=1e-9)
+    assert jackknife_sd(math.pi, folds) > 1.0  # taken as plain numbers, the turn would be spread
+
+
+def test_effect_sds_leave_fixed_parameters_and_unnamed_terms_without_one():
+    from leuven_friction.identify.diagnose import effect_sds
+
+    drift = Term("time_drift", {"t0": 0.0}, (("b", "lin", -0.9, 5.0), ("tau", "log", 0.0, 9.0)))
+    rate = Term("rate_stiffness", {"v_ref": 0.1, "v_floor": 1e-4}, (("c1", "lin", -2, 2), ("c2", "lin", -1, 1)))
+    full = [{"name": "rate_stiffness", "params": {"v_ref": 0.1, "v_floor": 1e-4, "c1": 0.2, "c2": 0.0}},
+            {"name": "time_drift", "params": {"t0": 0.0, "b": -0.2, "tau": 50.0}}]
+    folds = [[{"name": "rate_stiffness", "params": {"v_ref": 0.1, "v_floor": 1e-4, "c1": 0.2 + d, "c2": 0.0}},
+              {"name": "time_drift", "params": {"t0": 0.0, "b": -0.2 + d, "tau": 50.0 + 100 * d}}]
+             for d in (-0.02, -0.01, 0.0, 0.01, 0.02)]
+    sds = effect_sds([rate, drift], full, folds, ["time_drift"])
+    assert set(sds) == {"time_drift"} and set(sds["time_drift"]) == {"b", "tau"}
+    assert sds["time_drift"]["b"] == pytest.approx(math.sqrt(4 / 5 * 0.001))
+    assert sds["time_drift"]["tau"] == pytest.approx(100 * math.sqrt(4 / 5 * 0.001))

@@ -151,3 +151,7 @@ def test_effect_values_are_printed_with_the_units_of_the_parameter_set():
         "b = 0.1, tau = 30 s, t0 = 0 s"
     assert "v_ref = 0.02 rad/s" in format_values("rate_stiffness", {"c1": 0.1, "v_ref": 0.02},
                                                  {"position": "rad", "time": "s"})
+    # an estimated value carries its 1-σ before the unit; a held one (no σ) is printed bare
+    assert format_values("cyclic_softening", {"h": -0.5999, "n_c": 22.04, "min_excursion": 7.9e-7},
+                         {"position": "m"}, {"h": 0.068, "n_c": 3.6}) == \
+        "h = -0.5999 ± 0.068, n_c = 22.04 ± 3.6 reversals, min_excursion = 7.9e-07 m"
