@@ -13,8 +13,11 @@ Leuven model as the base — and the confusion matrix true × named.
 from __future__ import annotations
 
 import json
+import math
 import sys
 import time
+
+import numpy as np
 
 
 def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True):
@@ -39,6 +42,10 @@ def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True):
             "rms_steps": gap, "rms_free_steps": [s.get("rms_free") for s in d.steps], "noise": d.noise,
             "space": d.space, "samples": len(df), "seconds": el, "notes": list(d.notes),
             "heldout_gains": [s.get("heldout_gain") for s in d.steps[2:]],
+            # each named effect's written parameters and their σ, and the generator's own values
+            "effect_fits": [{"name": st["name"], "params": dict(st["params"] or {}), "sd": dict(st.get("sd") or {})}
+                            for st in d.steps[2:]],
+            "truth": {e: {k: float(v) for k, v in p.items()} for e, p in case.params.items()},
             "best_rejected": max((c["heldout_gain"] for c in d.candidates if not c["significant"]), default=None),
             "candidates": [{k: c.get(k) for k in ("name", "heldout_gain", "folds_improved", "folds_informative", "where",
                                                   "gain_where", "folds_where", "delta_bic", "significant", "cross_validated", "beside")}
@@ -85,6 +92,38 @@ def scores(rows) -> dict:
             "shrink_free_below_30pct": sum(s < 0.3 for s in shrink_free)}
 
 
+def truth_comparable(name: str, truth: dict) -> dict:
+    """The generator's values (``synth.hidden``) that mean the same as a candidate's parameter:
+    the load exponent; the ripple's wavelength and harmonic amplitudes; the drift's time
+    constant, and its end value exp(−β·ΔT) − 1 (the generator's law is exponential in the
+    temperature, the candidate's linear in the approach: the same τ and end point). A
+    softening's hyperbola has no parameter an exponential's means."""
+    if name == "normal_load":
+        return {"alpha": truth["alpha"]}
+    if name == "position_ripple":
+        return {"wavelength": truth["wavelength"], "a": truth["a1"], "a2": truth["a2"]}
+    if name == "time_drift":
+        return {"tau": truth["tau_T"], "b": math.expm1(-truth["beta_dT"])}
+    return {}
+
+
+def sd_calibration(rows) -> dict:
+    """|estimate − generator's value| / σ over every named true effect with a comparable
+    parameter (``truth_comparable``): per parameter, the count, the median |z| (0.67 if σ is
+    right and the error Gaussian) and the share within 2 σ (95 %)."""
+    z = {}
+    for r in rows:
+        for fit in r.get("effect_fits", []):
+            if fit["name"] not in r.get("truth", {}):
+                continue
+            for k, v in truth_comparable(fit["name"], r["truth"][fit["name"]]).items():
+                sd = fit["sd"].get(k)
+                if sd and k in fit["params"]:
+                    z.setdefault(f"{fit['name']}.{k}", []).append(abs(fit["params"][k] - v) / sd)
+    return {k: {"n": len(v), "median_abs_z": float(np.median(v)), "within_2sd": float(np.mean(np.array(v) < 2.0))}
+            for k, v in z.items()}
+
+
 def format_matrix(conf) -> str:
     cols = [c for c in conf["columns"] if any(c in row for row in conf["matrix"].values())]
     lines = ["| true \\ named | cases | " + " | ".join(cols) + " |", "|---" * (len(cols) + 2) + "|"]
@@ -115,7 +154,8 @@ def run_suite(quick: bool = False, out: str | None = None, progress=print, base:
         if out:
             with open(out, "w") as fh:
                 json.dump({"rows": rows}, fh)
-    res = {"rows": rows, "confusion": confusion(rows), "scores": scores(rows), "seconds": time.perf_counter() - t0,
+    res = {"rows": rows, "confusion": confusion(rows), "scores": scores(rows), "sd_calibration": sd_calibration(rows),
+           "seconds": time.perf_counter() - t0,
            "start": start}
     if out:
         with open(out, "w") as fh:
@@ -168,6 +208,7 @@ if __name__ == "__main__":
                         start=int(args[args.index("--start") + 1]) if "--start" in args else 1000)
         print(format_matrix(res["confusion"]))
         print(json.dumps(res["scores"], indent=1))
+        print(json.dumps(res["sd_calibration"], indent=1))
         print(f"whole suite: {res['seconds']:.0f} s")
     else:
         print(json.dumps(bench_diagnosis(), indent=1))
