@@ -1220,7 +1220,7 @@ class Evidence:
     against: Alternative | None = field(repr=False, default=None)  # the alternative it is judged against
     rms_alt: float = 0.0  # that alternative's in-sample RMS
     unsettled: str | None = None  # why its change is not seen settling within the session (``Term.unsettled``)
-    fold_entries: list | None = field(repr=False, default=None)  # per fold: the entries refitted without it
+    fold_entries: list | None = field(repr=False, default=None)  # per fold: every entry refitted on the other folds
 
     @property
     def beside(self) -> str | None:
@@ -1339,7 +1339,7 @@ def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list,
 def jackknife_sd(full: float, folds, *, angle: bool = False) -> float:
     """Delete-a-group jackknife standard error of an estimate from its k refits each leaving
     one fold out: √((k − 1)/k · Σ(θ_i − θ̄)²). For the mean of k equal groups it is exactly
-    the standard error s/√n. An angle's deviations are taken from the full estimate, wrapped
+    the standard error estimated from the k group means, sd(group means)/√k. An angle's deviations are taken from the full estimate, wrapped
     to (−π, π], so a phase near ±π does not count a turn as spread."""
     d = np.asarray(folds, dtype=np.float64) - full
     if angle:
