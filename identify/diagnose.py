@@ -539,8 +539,8 @@ def softening_nc_max(strokes: SpeedOrder | None) -> float:
     the session shows. A contact's softening need not be exponential (one hyperbolic in the
     count, 1/(1 + n/n_h), fits an n_c well above n_h), so the stricter bound everywhere left
     true softenings on tribometers, whose passes cycle through their speeds, seen, not named."""
-    ordered = strokes is None or abs(strokes.rho) >= SPEED_ORDER_RHO
-    return 0.5 if ordered else 1.0
+    unordered = strokes is not None and abs(strokes.rho) < SPEED_ORDER_RHO  # (a ρ of too few strokes is NaN)
+    return 1.0 if unordered else 0.5
 
 
 def presliding_range(params: FrictionParams) -> float:
@@ -1353,14 +1353,17 @@ def effect_sds(terms: list, full: list, folds: list, named) -> dict:
     jackknife σ (``jackknife_sd``) over the cross-validation's leave-one-fold-out refits
     ``folds`` around the fit on every fold, ``full`` (entries in the order of ``terms``). The
     refits are beside the alternative's free steady curve: σ says how far the estimate moves
-    with the data, not how far its shape is from the contact's."""
+    with the data, not how far its shape is from the contact's.
+    A saturation scale at a bound of its range (``Term.settles``, named without settling) gets
+    none: the bound, not the data, holds it there in every fold."""
     out = {}
     for j, term in enumerate(terms):
         if term.name not in named:
             continue
         est = full[j]["params"]
+        at_bound = term.settles is not None and term.bound(_entry_to_u(term, est)) is not None
         out[term.name] = {k: jackknife_sd(v, [f[j]["params"][k] for f in folds], angle=k.startswith("phase"))
-                          for k, v in est.items() if k not in term.fixed}
+                          for k, v in est.items() if k not in term.fixed and not (at_bound and k == term.settles)}
     return out
 
 
@@ -1769,11 +1772,15 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     pred_given_c = pred_given + memory_constant(meas - pred_given, allm, cmp_.memory_offset)
     rms0 = _rms((meas - pred_given_c)[allm])
     say(0.05, "refitting the level and presliding stiffness (the alternative)")
+    # the strokes' order sets how far a softening must be seen to settle (``softening_nc_max``):
+    # for one the file carries as for a candidate
+    reversals = cmp_.context().reversals
+    strokes = stroke_order(reversals[allm], cmp_.velocity[allm], cmp_.v_rest)
     prior_terms = []
     prior_u = np.zeros(0)
     for e in prior0:
         if e["name"] in EFFECTS and e["name"] != "presliding_stiffness":
-            tm = _terms_for(e["name"], cmp_)
+            tm = _terms_for(e["name"], cmp_, strokes)
             tm = Term(tm.name, {k: e["params"][k] for k in tm.fixed}, tm.free, tm.settles)
             prior_terms.append(tm)
             prior_u = np.concatenate([prior_u, _entry_to_u(tm, e["params"])])
@@ -1820,7 +1827,6 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # the transitions: within twice the presliding range of a reversal (at rest or moving),
     # after the first significant reversal: before it the model runs on its virgin curve, a
     # property of the hysteresis model itself, not of a softening contact
-    reversals = cmp_.context().reversals
     transition = ~gross_sliding(cmp_) & (reversals >= 1)
     # where each candidate must help as well, held out: a stiffness effect where the presliding
     # spring shows (in the transitions after the first reversal), else it could only stand in for a
@@ -1837,7 +1843,6 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"{order.count} holds of steady sliding): a slow change in time and the shape of "
                           f"S(v) are confounded here, and part of a drift is taken as S(v). To tell: visit the "
                           f"speed levels in a shuffled order, or repeat the first ones at the session's end")
-    strokes = stroke_order(reversals[allm], cmp_.velocity[allm], cmp_.v_rest)
     if "cyclic_softening" in s.candidates and abs(strokes.rho) >= SPEED_ORDER_RHO:
         # the stiffness varying with speed a softening is judged beside (rate_alternative) then
         # takes up part of a true softening, and a transition whose dependence on speed eq. (5)
@@ -1859,6 +1864,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     scored = [pred_given + engine.nuisance(r0, allm, pred_given), null.pred]
     named = []
     sds = {}  # the named effects' parameter σ (``effect_sds``)
+    # the file's own effects are refitted with every candidate: theirs too (not a held rate_stiffness)
+    refitted_prior = {t.name for t in prior_terms if t.name != "rate_stiffness"}
     confounded = []
     cur, cur_terms, cur_u = null, list(prior_terms), null.u[2:] if len(null.u) > 2 else np.zeros(0)
     fits = [(list(prior_terms), np.concatenate([[math.log(null.g)], null.u[2:]]))]  # per step: terms, u
@@ -1956,7 +1963,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # σ of every named effect's parameters from this round's cross-validation, where they were
         # all refitted with the winner; the last round's go into the file written
         sds = effect_sds(winner.against.terms + [_terms_for(winner.name, cmp_, strokes)], winner.fit.entries,
-                         winner.fold_entries, named)
+                         winner.fold_entries, set(named) | refitted_prior)
         say(0.1 + 0.8 * (step + 1) / s.max_effects, f"adding {winner.name} and refitting everything together")
         # the model goes on as the one that was cross-validated: an effect judged beside a
         # stiffness varying with speed keeps it (held, not named: on clean recordings it takes up
@@ -2023,8 +2030,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         unc = {k: v for k, v in params.uncertainty.items()
                if not (k.startswith("stribeck.") or k.startswith("transition_curve") or k in ("n", "sigma1")
                        or k.startswith("effects."))}
-        # the named effects' σ (``effect_sds``); a held entry (rate_stiffness) and the fixed
-        # parameters (a reference, a start, a threshold) get none: they were not estimated
+        # the σ of the named effects and of the file's own (``effect_sds``, from the last round);
+        # a held entry (rate_stiffness) and the fixed parameters (a reference, a start, a
+        # threshold) get none: they were not estimated
         unc.update({f"effects.{i}.params.{k}": sd for i, e in enumerate(final.entries)
                     for k, sd in sds.get(e["name"], {}).items() if math.isfinite(sd)})
         prov = dict(params.provenance)

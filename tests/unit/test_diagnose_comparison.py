@@ -489,9 +489,9 @@ def test_jackknife_of_a_phase_does_not_count_a_turn_as_spread():
     from leuven_friction.identify.diagnose import jackknife_sd
 
     folds = [math.pi - 0.01, -math.pi + 0.01, math.pi - 0.03, -math.pi + 0.02, math.pi]
-    unwrapped = [f if f > 0 else f + 2 * math.pi for f in folds]
-    expected = jackknife_sd(math.pi, unwrapped)
-    assert expected < 0.05
+    # their deviations from π, a turn taken off: −0.01, 0.01, −0.03, 0.02, 0
+    d = np.array([-0.01, 0.01, -0.03, 0.02, 0.0])
+    expected = math.sqrt(4 / 5 * np.sum((d - d.mean()) ** 2))
     assert jackknife_sd(math.pi, folds, angle=True) == pytest.approx(expected, rel=1e-9)
     assert jackknife_sd(math.pi, folds) > 1.0  # taken as plain numbers, the turn would be spread
 
@@ -510,3 +510,20 @@ def test_effect_sds_leave_fixed_parameters_and_unnamed_terms_without_one():
     assert set(sds) == {"time_drift"} and set(sds["time_drift"]) == {"b", "tau"}
     assert sds["time_drift"]["b"] == pytest.approx(math.sqrt(4 / 5 * 0.001))
     assert sds["time_drift"]["tau"] == pytest.approx(100 * math.sqrt(4 / 5 * 0.001))
+
+
+def test_a_softening_scale_held_at_its_bound_gets_no_sigma():
+    # named without settling (``--no-require-settling``): n_c at the top of its range in every
+    # fold, where the bound and not the data holds it; h, free inside its range, keeps its σ
+    from leuven_friction.identify.diagnose import effect_sds
+
+    soft = Term("cyclic_softening", {"min_excursion": 1e-6}, (("h", "lin", -0.9, 5.0),
+                                                               ("n_c", "log", math.log(3.0), math.log(11.5))),
+                settles="n_c")
+    full = [{"name": "cyclic_softening", "params": {"min_excursion": 1e-6, "h": -0.3, "n_c": 11.5}}]
+    folds = [[{"name": "cyclic_softening", "params": {"min_excursion": 1e-6, "h": -0.3 + d, "n_c": 11.5}}]
+             for d in (-0.02, -0.01, 0.0, 0.01, 0.02)]
+    assert effect_sds([soft], full, folds, {"cyclic_softening"}) == {"cyclic_softening": {"h": pytest.approx(
+        math.sqrt(4 / 5 * 0.001))}}
+    inside = [{"name": "cyclic_softening", "params": {"min_excursion": 1e-6, "h": -0.3, "n_c": 6.0}}]
+    assert set(effect_sds([soft], inside, folds, {"cyclic_softening"})["cyclic_softening"]) == {"h", "n_c"}
