@@ -1962,8 +1962,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         named.append(winner.name)
         # σ of every named effect's parameters from this round's cross-validation, where they were
         # all refitted with the winner; the last round's go into the file written
-        sds = effect_sds(winner.against.terms + [_terms_for(winner.name, cmp_, strokes)], winner.fit.entries,
-                         winner.fold_entries, set(named) | refitted_prior)
+        cur_terms = winner.against.terms + [_terms_for(winner.name, cmp_, strokes)]
+        sds = effect_sds(cur_terms, winner.fit.entries, winner.fold_entries, set(named) | refitted_prior)
         say(0.1 + 0.8 * (step + 1) / s.max_effects, f"adding {winner.name} and refitting everything together")
         # the model goes on as the one that was cross-validated: an effect judged beside a
         # stiffness varying with speed keeps it (held, not named: on clean recordings it takes up
@@ -1974,7 +1974,6 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         if winner.beside:
             cmp_.notes.append(f"{winner.name} was judged beside {winner.beside} (rate_stiffness, held with it in "
                               f"the model written, not named)")
-        cur_terms = winner.against.terms + [_terms_for(winner.name, cmp_, strokes)]
         head = 2 if winner.against.fit_k0 else 1  # log g (and log κ0, refitted with it)
         k0 = winner.fit.k0
         refit = _fit(engine, cur_terms, np.concatenate([[math.log(winner.fit.g)], winner.fit.u[head:]]),

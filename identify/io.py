@@ -119,7 +119,7 @@ def ragged_line(path: Path, sep: str) -> tuple[int, int, int] | None:
     those may hold the separator."""
     if sep == r"\s+":
         return None
-    header, before, carry = None, 0, b""
+    header, before = None, 0
     with open(path, "rb") as fh:
         head = fh.read(3)
         carry = b"" if head == b"\xef\xbb\xbf" else head  # the byte-order mark is not in the first line
