@@ -70,6 +70,8 @@ from ..model.params import get_value
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, format_values, significant_reversals
 from .data import DataError, Recording
+from .errors import IdentificationError
+from .markov import Levels
 from .segment import local_slope
 
 
@@ -487,6 +489,16 @@ class Term:
     free: tuple  # (param name, transform "lin"|"log", lo, hi) in transformed coordinates
     settles: str | None = None  # the free scale over which the effect must be seen to settle (see ``unsettled``)
 
+    def at_bounds(self, u: np.ndarray) -> set:
+        """The free parameters of the term's part ``u`` of a fit that ended at a bound of their
+        range (a log scale within SETTLE_TOL of it, a linear one within BOUND_TOL of the range)."""
+        out = set()
+        for (pname, tr, lo, hi), x in zip(self.free, u):
+            tol = SETTLE_TOL if tr == "log" else BOUND_TOL * (hi - lo)
+            if x >= hi - tol or x <= lo + tol:
+                out.add(pname)
+        return out
+
     def bound(self, u: np.ndarray) -> str | None:
         """Where the ``settles`` scale of the term's part ``u`` of a fit ended: "upper", "lower"
         (within SETTLE_TOL of a bound of its range) or None (inside it, or no such scale)."""
@@ -526,6 +538,7 @@ class Term:
 
 
 SETTLE_TOL = math.log(1.02)  # a scale within 2 % of a bound is at it
+BOUND_TOL = 1e-3  # a linear parameter within this fraction of its range from a bound is at it
 
 
 def softening_nc_max(strokes: SpeedOrder | None) -> float:
@@ -1354,16 +1367,17 @@ def effect_sds(terms: list, full: list, folds: list, named) -> dict:
     ``folds`` around the fit on every fold, ``full`` (entries in the order of ``terms``). The
     refits are beside the alternative's free steady curve: σ says how far the estimate moves
     with the data, not how far its shape is from the contact's.
-    A saturation scale at a bound of its range (``Term.settles``, named without settling) gets
-    none: the bound, not the data, holds it there in every fold."""
+    A parameter at a bound of its range (``Term.at_bounds``: a saturation scale named without
+    settling, a drift's end value at its floor) gets none: the bound, not the data, holds it
+    there in every fold, and their spread would be about 0."""
     out = {}
     for j, term in enumerate(terms):
         if term.name not in named:
             continue
         est = full[j]["params"]
-        at_bound = term.settles is not None and term.bound(_entry_to_u(term, est)) is not None
+        held = term.at_bounds(_entry_to_u(term, est))
         out[term.name] = {k: jackknife_sd(v, [f[j]["params"][k] for f in folds], angle=k.startswith("phase"))
-                          for k, v in est.items() if k not in term.fixed and not (at_bound and k == term.settles)}
+                          for k, v in est.items() if k not in term.fixed and k not in held}
     return out
 
 
@@ -1992,13 +2006,25 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # on that curve (its free inertia, its level at rest)
     written = written_fits(engine, params.replace(effects=()), fits, refit_curve=refit_curve,
                            start=alone.u if len(alone.u) else None)
-    (null, _), (final, final_base) = written[0], written[-1]
-    for st, (wf, _) in zip(steps[1:], written):
+    (null, *_), (final, final_base, final_reid, reidentified) = written[0], written[-1]
+    for st, (wf, *_) in zip(steps[1:], written):
         st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant (and inertia)
         if wf.entries:
             st["params"] = dict(wf.entries[-1]["params"])
         step_preds.append(wf.pred)
     steps[1]["label"] = f"alternative: level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
+    if final_reid is not None:
+        cmp_.notes.append(f"S(v) identified anew for the model written from the steady sliding ({final_reid.levels} speed "
+                          f"levels, the level and the friction effects divided out; the Markov estimator, holding what "
+                          f"they do not determine): the gap there is {final_reid.gap_new:.3g} against "
+                          f"{final_reid.gap_file:.3g} with the file's S(v) at its best level per side (the levels' "
+                          f"noise {final_reid.noise:.3g}) — "
+                          + ("the model written refitted from it and from the file's, and from it left less: kept"
+                             if reidentified else
+                             "the model written refitted from it and from the file's, and from the file's left less: "
+                             "the file's kept" if final_reid.used else
+                             f"not clearly better (under {STEADY_MIN_GAIN:.0%} less, or the file's within "
+                             f"{STEADY_MISFIT:g} noise sds): the file's kept"))
     if params.model == "leuven":
         levels = [getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
                   for sd in ("positive", "negative") for k in ("Fs", "Fc")]
@@ -2041,11 +2067,19 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             # no longer held at the value the fit's provenance gives (F_s "held at F_c", n "fixed
             # at 7"): the entry goes, and provenance.diagnosis says where the refit took it
             prov["held"] = {k: v for k, v in prov["held"].items() if k not in moved}
+        if reidentified:
+            # a side of S(v) identified anew holds what its steady levels do not determine, not what the file's did
+            prov["held"] = {**{k: v for k, v in (prov.get("held") or {}).items()
+                               if not any(k.startswith(f"stribeck.{sd}.") for sd in final_reid.sides)},
+                            **final_reid.held}
         held = [e["name"] for e in final.entries if e["name"] not in named]
         prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation)"
                              + (f", {', '.join(held)} held with them" if held else "") + f"; level ×{final.g:.4g}, "
                              f"presliding stiffness ×{final.k0:.4g}, n {params.n:.3g} → {final_base.n:.3g}, "
-                             f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, the S(v) levels"
+                             f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, "
+                             + (f"S(v) identified anew from the steady sliding ({', '.join(final_reid.sides)}), then "
+                                if reidentified else "")
+                             + "the S(v) levels"
                              + (", the transition curve's segments" if refit_curve else "")
                              + f" refitted by output error in {cmp_.space}"
                              + (f"; moved from held: {', '.join(f'{k} {a} → {b}' for k, (a, b) in moved.items())}"
@@ -2066,6 +2100,101 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written
+STEADY_BIN = math.log(1.2)  # steady sliding pooled into speed levels this wide in log|v| (``steady_levels``)
+STEADY_MIN_SAMPLES = 10  # … a level needs this many samples
+STEADY_MIN_GAIN = 0.25  # S(v) re-identified for the model written only if it leaves this much less steady gap
+STEADY_MISFIT = 2.0  # … and the file's leaves more than this many times the levels' noise
+
+
+def steady_levels(velocity: np.ndarray, y: np.ndarray, mask: np.ndarray, corr_length: int) -> Levels:
+    """Constant-velocity levels (the Markov estimator's input, section IV-A) from the samples of
+    steady sliding ``mask``: per direction, pooled in bins of STEADY_BIN in log|v|, each level's
+    mean speed and mean ``y`` with the variance of that mean over its ``corr_length``-sample
+    stretches (neighbouring samples of averaged friction are not independent)."""
+    out = [[], [], [], []]
+    for sign in (1.0, -1.0):
+        m = mask & (velocity * sign > 0)
+        if not m.any():
+            continue
+        lv = np.log(np.abs(velocity[m]))
+        b = np.floor((lv - lv.min()) / STEADY_BIN).astype(np.int64)
+        for k in np.unique(b):
+            sel = b == k
+            cnt = int(sel.sum())
+            if cnt < STEADY_MIN_SAMPLES:
+                continue
+            yy = y[m][sel]
+            n_eff = max(2.0, cnt / max(corr_length, 1))
+            out[0].append(float(np.mean(velocity[m][sel])))
+            out[1].append(float(np.mean(yy)))
+            out[2].append(float(np.var(yy, ddof=1)) / n_eff)
+            out[3].append(cnt)
+    return Levels(*(np.array(o, dtype=float) for o in out))
+
+
+@dataclass(frozen=True)
+class SteadyReidentification:
+    """S(v) identified anew for the model written from the recording's steady sliding
+    (``steady_stribeck``), with both gaps there: the file's S(v) (each side at its best level) and
+    the new one."""
+
+    stribeck: object  # model.Stribeck
+    gap_file: float
+    gap_new: float
+    levels: int
+    noise: float  # sd of a level's mean (pooled): what the gaps there cannot go below
+    sides: tuple = ()  # the sides identified anew ("positive", "negative")
+    held: dict = field(default_factory=dict)  # {"stribeck.<side>.<name>": why the levels do not determine it}
+
+    @property
+    def used(self) -> bool:
+        """The file's S(v) misfits the steady levels beyond their noise, and the new one
+        clearly less: a file that fits stays as it is (a gain in the noise is no reason)."""
+        return self.gap_file > STEADY_MISFIT * self.noise and self.gap_new < (1.0 - STEADY_MIN_GAIN) * self.gap_file
+
+
+def steady_stribeck(params: FrictionParams, cmp_: Comparison, factor: np.ndarray, mask: np.ndarray) -> SteadyReidentification | None:
+    """The Markov estimator (``fit_side_honest``: what the levels do not determine is held) run
+    on the compared friction divided by ``factor`` (the level g times the step's friction
+    effects) over the steady sliding in ``mask``: in gross sliding at a steady velocity the
+    friction is S(v) + σ2·v times those factors, whatever the transition curve. A fit whose
+    Markov levels averaged over a load or a temperature (F_s held at F_c, σ2 held at 0) leaves
+    the model written several noise floors in sliding that no refit of the levels within a factor
+    1.5 can take up. None where no side has levels."""
+    from ..model import Stribeck, StribeckSide
+    from .markov import NAMES, fit_side_honest
+
+    if params.model != "leuven" or cmp_.space != "friction":
+        return None
+    y = cmp_.measured / np.where(factor != 0, factor, 1.0)
+    levels = steady_levels(cmp_.velocity, y, mask, max(cmp_.window, cmp_.average))
+    if len(levels.velocity) == 0:
+        return None
+    sides, gap_file, gap_new, anew, held = [], 0.0, 0.0, [], {}
+    both = {"positive": params.stribeck.positive, "negative": params.stribeck.negative}
+    for name, sign in (("positive", 1), ("negative", -1)):
+        old = getattr(params.stribeck, name)
+        m = levels.velocity * sign > 0
+        try:
+            dec = fit_side_honest(levels, sign) if m.any() else None
+        except IdentificationError:
+            dec = None
+        if dec is None or dec.fit is None:
+            sides.append(old)
+            continue
+        v, F, w = levels.velocity[m], levels.friction[m], levels.count[m]
+        new = StribeckSide(**{k: float(dec.fit.values[k]) for k in NAMES})
+        s_old, s_new = (stribeck_curve(params.replace(stribeck=Stribeck(**{**both, name: sd})), v) for sd in (old, new))
+        c = float(np.sum(w * F * s_old) / max(np.sum(w * s_old * s_old), 1e-300))  # the file's side at its best level
+        gap_file += float(np.sum(w * (F - c * s_old) ** 2))
+        gap_new += float(np.sum(w * (F - s_new) ** 2))
+        sides.append(new)
+        anew.append(name)
+        held.update({f"stribeck.{name}.{k}": f"{why} (the diagnosis's steady sliding)" for k, why in dec.held.items()})
+    total = float(np.sum(levels.count))
+    noise = math.sqrt(float(np.sum(levels.count * levels.variance)) / total)
+    return SteadyReidentification(Stribeck(*sides), math.sqrt(gap_file / total), math.sqrt(gap_new / total),
+                                  len(levels.velocity), noise, tuple(anew), held)
 
 
 def written_fits(engine: Engine, base: FrictionParams, fits: list, refit_curve: bool = False,
@@ -2080,29 +2209,65 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list, refit_curve: 
     whole solution vector: the same base and the file's own effects refitted as the model
     alone, before the alternative's free curve was added — its stiffness and curve segments were
     fitted together). The gaps are of friction taken from an applied force with the inertia
-    refitted beside the model (``model_nuisance``; not written). Returns (FitResult, refitted
-    base) per step."""
+    refitted beside the model (``model_nuisance``; not written). The S(v) a step starts from is
+    the file's, or where it fits the steady sliding clearly worse (STEADY_MIN_GAIN) the one
+    identified there anew (``steady_stribeck``). Returns (FitResult, refitted base, the
+    re-identification or None, whether it was used) per step."""
     engine.free = None
     engine.free_inertia = True
     mask = engine.scored
     if base.model != "leuven":
         # n, σ1 and the S(v) levels refitted are the Leuven model's: the level, stiffness and effects only
         engine.set_base(base)
-        return [(_fit(engine, terms, np.concatenate([[u[0], 0.0], u[1:]]), mask, fit_k0=True, k0=1.0), base)
+        return [(_fit(engine, terms, np.concatenate([[u[0], 0.0], u[1:]]), mask, fit_k0=True, k0=1.0), base, None, False)
                 for terms, u in fits]
     out, prev = [], None
     nb = refit_length(base, refit_curve)
+    steady = steady_sliding(engine.c) & mask
+    chosen = None  # the base and solution the step before kept
     for terms, u in fits:
         # u: log g, then the terms' parameters (the decision's fit)
         if prev is None and start is not None:
-            u_start = np.asarray(start, float)  # the first step's terms are the file's own, as ``start``'s
+            u_start = np.array(start, float)  # the first step's terms are the file's own, as ``start``'s
         else:
             u_start = np.concatenate([np.r_[u[0], np.zeros(nb - 1)] if prev is None else prev[:nb], u[1:]])
-        # a refit of a model the decision has already fitted: fewer steps than the alternative's
-        r = refit_transition(engine, base, terms, u[1:], mask, start=u_start, max_nfev=WRITTEN_NFEV,
-                             refit_curve=refit_curve)
-        out.append((fit_result(engine, r.g, r.k0, r.entries, r.u, mask), r.params))
-        prev = r.u
+        # S(v) identified anew from the steady sliding, the step's friction effects and level divided
+        # out (so it stays at the file's scale, where g and the curve are), where it fits there clearly
+        # better than the file's with each side at its best level
+        entries, i = [], 1
+        for term in terms:
+            entries.append(_entry(term, u[i:i + len(term.free)]))
+            i += len(term.free)
+        fs = effect_scales(entries, engine.ctx)[0]
+        reid = steady_stribeck(base, engine.c, math.exp(u[0]) * (1.0 if fs is None else fs), steady)
+        # refitted from the file's S(v) and, where it is used, from the new one; the better kept: an
+        # effect the decision fitted beside the free curve (a drift a speed-ordered sweep shares with
+        # S(v)) is only part of it, and S(v) from the steady sliding divided by that part can start
+        # the refit in a worse basin than the file's (robot joint 1009: 0.255 against 0.145)
+        starts = [(base, u_start)]
+        if reid is not None and reid.used:
+            us = u_start.copy()
+            us[0] = u[0]  # the level and the S(v) factors were relative to the file's S(v)
+            us[4:REFIT_BASE_U] = 0.0
+            starts.append((base.replace(stribeck=reid.stribeck), us))
+        if chosen is not None and chosen[0] is not base:
+            # and from where the step before ended, where that was from a new S(v): the new effect's
+            # start (the decision's, beside the free curve) can lead the other two off (linear stage
+            # 1014, a drift after the load: 2.06 from either, the step before 0.66)
+            starts.append((chosen[0], np.concatenate([chosen[1][:nb], u[1:]])))
+        best = None
+        for b, us in starts:
+            # a refit of a model the decision has already fitted: fewer steps than the alternative's
+            r = refit_transition(engine, b, terms, u[1:], mask, start=us, max_nfev=WRITTEN_NFEV, refit_curve=refit_curve)
+            fr = fit_result(engine, r.g, r.k0, r.entries, r.u, mask)
+            if b is base:
+                prev = r.u  # the next step starts from the file's S(v) refitted, as well
+            if best is None or fr.rss < best[0].rss:
+                best = (fr, r, b)
+        fr, r, b = best
+        chosen = (b, r.u)
+        engine.set_base(r.params)
+        out.append((fr, r.params, reid, b is not base))
     return out
 
 

@@ -512,7 +512,7 @@ def test_effect_sds_leave_fixed_parameters_and_unnamed_terms_without_one():
     assert sds["time_drift"]["tau"] == pytest.approx(100 * math.sqrt(4 / 5 * 0.001))
 
 
-def test_a_softening_scale_held_at_its_bound_gets_no_sigma():
+def test_a_parameter_held_at_its_bound_gets_no_sigma():
     # named without settling (``--no-require-settling``): n_c at the top of its range in every
     # fold, where the bound and not the data holds it; h, free inside its range, keeps its σ
     from leuven_friction.identify.diagnose import effect_sds
@@ -527,3 +527,53 @@ def test_a_softening_scale_held_at_its_bound_gets_no_sigma():
         math.sqrt(4 / 5 * 0.001))}}
     inside = [{"name": "cyclic_softening", "params": {"min_excursion": 1e-6, "h": -0.3, "n_c": 6.0}}]
     assert set(effect_sds([soft], inside, folds, {"cyclic_softening"})["cyclic_softening"]) == {"h", "n_c"}
+    # a drift whose end value b sits at its floor −0.9 in every fold (a linear parameter): no σ
+    # for b (the jackknife would give ~1e-8), τ inside its range keeps one
+    drift = Term("time_drift", {"t0": 0.0}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(10.0), math.log(2000.0))))
+    full = [{"name": "time_drift", "params": {"t0": 0.0, "b": -0.9, "tau": 300.0}}]
+    folds = [[{"name": "time_drift", "params": {"t0": 0.0, "b": -0.9 + 1e-8 * d, "tau": 300.0 + 10 * d}}]
+             for d in (-2, -1, 0, 1, 2)]
+    assert effect_sds([drift], full, folds, {"time_drift"}) == {"time_drift": {"tau": pytest.approx(
+        math.sqrt(4 / 5 * 1000.0))}}
+
+
+def test_steady_stribeck_identifies_s_of_v_anew_under_a_load_the_file_averaged_over():
+    # the file's S(v) is what a fit gives when its Markov levels average over a varying load:
+    # Coulomb (F_s held at F_c), σ2 held at 0. The recording: a Stribeck curve + viscous law of
+    # another machine (its own F_s, F_c, v_s, δ, σ2 per side), times a load factor that changes
+    # from hold to hold, plus noise. With the load's factor divided out, the Markov estimator on
+    # the steady levels recovers that law; the file's S(v), even at its best level per side,
+    # cannot follow it. A file with the true law is left as it is (no clear gain).
+    from leuven_friction.identify.diagnose import steady_stribeck
+    from leuven_friction.model import Stribeck, StribeckSide, default_params
+    from leuven_friction.model.simulate import stribeck_curve
+
+    rng = np.random.default_rng(3)
+    true = Stribeck(StribeckSide(Fs=9.0, Fc=5.0, vs=0.02, delta=1.4, sigma2=3.0),
+                    StribeckSide(Fs=-7.0, Fc=-4.0, vs=-0.03, delta=0.8, sigma2=2.5))
+    base = default_params()
+    truth = base.replace(stribeck=true)
+    speeds = np.geomspace(0.002, 1.0, 14)
+    v = _holds([s * sg for s in speeds for sg in (1, -1)], n_per=300)
+    load = np.repeat(rng.uniform(0.6, 1.6, len(v) // 350 + 1), 350)[: len(v)]
+    meas = stribeck_curve(truth, v) * load + rng.normal(0.0, 0.05, len(v))
+    t = np.arange(len(v)) * 1e-3
+    c = Comparison("friction", t, meas, np.cumsum(v) * 1e-3, v, None, None, 0.05, 1e-6, 5, 1e-5, 1e-4)
+    steady = np.abs(v) > 0
+    coulomb = base.replace(stribeck=Stribeck(StribeckSide(Fs=6.0, Fc=6.0, vs=0.001, delta=1.0, sigma2=0.0),
+                                             StribeckSide(Fs=-5.0, Fc=-5.0, vs=-0.001, delta=1.0, sigma2=0.0)))
+    reid = steady_stribeck(coulomb, c, load, steady)
+    assert reid is not None and reid.sides == ("positive", "negative") and reid.levels == 28
+    assert reid.used and reid.gap_new < 0.5 * reid.gap_file
+    # the noise's 0.05 over 300 samples a level, counted in stretches of 5 (a level's sd 0.0065)
+    assert reid.noise == pytest.approx(0.05 / math.sqrt(60), rel=0.15) and reid.gap_new < 2 * reid.noise
+    got = base.replace(stribeck=reid.stribeck)
+    assert np.allclose(stribeck_curve(got, v), stribeck_curve(truth, v), rtol=0.02, atol=0.02)
+    for side in ("positive", "negative"):
+        assert getattr(reid.stribeck, side).sigma2 == pytest.approx(getattr(true, side).sigma2, rel=0.05)
+    # the load left in: the levels scatter with it, and S(v) no longer follows the law
+    unfactored = steady_stribeck(coulomb, c, np.ones(len(v)), steady)
+    assert unfactored.gap_new > 10 * reid.gap_new
+    # the file already holds the law: it fits within the levels' noise, and is kept
+    same = steady_stribeck(truth, c, load, steady)
+    assert same.gap_file < 2 * same.noise and not same.used
