@@ -64,7 +64,7 @@ from scipy.ndimage import uniform_filter1d
 from scipy.signal import savgol_filter
 from scipy.stats import rankdata
 
-from ..model import FrictionParams, TransitionCurve, simulate_displacement
+from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, simulate_displacement
 from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
@@ -2138,7 +2138,7 @@ class SteadyReidentification:
     (``steady_stribeck``), with both gaps there: the file's S(v) (each side at its best level) and
     the new one."""
 
-    stribeck: object  # model.Stribeck
+    stribeck: Stribeck
     gap_file: float
     gap_new: float
     levels: int
@@ -2161,7 +2161,6 @@ def steady_stribeck(params: FrictionParams, cmp_: Comparison, factor: np.ndarray
     Markov levels averaged over a load or a temperature (F_s held at F_c, σ2 held at 0) leaves
     the model written several noise floors in sliding that no refit of the levels within a factor
     1.5 can take up. None where no side has levels."""
-    from ..model import Stribeck, StribeckSide
     from .markov import NAMES, fit_side_honest
 
     if params.model != "leuven" or cmp_.space != "friction":
@@ -2209,10 +2208,12 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list, refit_curve: 
     whole solution vector: the same base and the file's own effects refitted as the model
     alone, before the alternative's free curve was added — its stiffness and curve segments were
     fitted together). The gaps are of friction taken from an applied force with the inertia
-    refitted beside the model (``model_nuisance``; not written). The S(v) a step starts from is
-    the file's, or where it fits the steady sliding clearly worse (STEADY_MIN_GAIN) the one
-    identified there anew (``steady_stribeck``). Returns (FitResult, refitted base, the
-    re-identification or None, whether it was used) per step."""
+    refitted beside the model (``model_nuisance``; not written). Each step is refitted from the
+    file's S(v) and, where the file's misfits the steady sliding (``SteadyReidentification.used``),
+    also from S(v) identified there anew (``steady_stribeck``) and from where the step before
+    ended if that was from such an S(v); the smallest gap is kept. Returns (FitResult, refitted
+    base, the step's re-identification or None, whether the kept refit started from a new
+    S(v)) per step."""
     engine.free = None
     engine.free_inertia = True
     mask = engine.scored
