@@ -632,6 +632,15 @@ def _entry(term: Term, u: np.ndarray) -> dict:
     return {"name": term.name, "params": vals}
 
 
+def _entries(terms: list, u: np.ndarray) -> list:
+    """The entries of ``terms`` from their free parameters laid end to end in ``u``."""
+    out, i = [], 0
+    for term in terms:
+        out.append(_entry(term, u[i:i + len(term.free)]))
+        i += len(term.free)
+    return out
+
+
 def _entry_to_u(term: Term, params: dict) -> np.ndarray:
     vals = dict(params)
     if term.name == "position_ripple":
@@ -947,12 +956,7 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
         if fit_k0:
             kk = math.exp(u[1])
             i = 2
-        entries = []
-        for term in terms:
-            m = len(term.free)
-            entries.append(_entry(term, u[i:i + m]))
-            i += m
-        return g, kk, entries
+        return g, kk, _entries(terms, u[i:])
 
     idx = _thinned(mask)
     if engine.c.space == "position":
@@ -1047,11 +1051,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     def unpack(u):
         g, kk, ln, ls = math.exp(u[0]), math.exp(u[1]), u[2], u[3]
         fac = np.exp(u[4:4 + NS])
-        entries, i = [], nb
-        for term in terms:
-            m = len(term.free)
-            entries.append(_entry(term, u[i:i + m]))
-            i += m
+        entries = _entries(terms, u[nb:])
         st = Stribeck(side(sp, fac[:2]), side(sn, fac[2:]))
         p = params.replace(n=float(n0 * math.exp(ln)), sigma1=float(s10 * math.exp(ls)), stribeck=st)
         if NC:
@@ -2235,11 +2235,7 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list, refit_curve: 
         # S(v) identified anew from the steady sliding, the step's friction effects and level divided
         # out (so it stays at the file's scale, where g and the curve are), where it fits there clearly
         # better than the file's with each side at its best level
-        entries, i = [], 1
-        for term in terms:
-            entries.append(_entry(term, u[i:i + len(term.free)]))
-            i += len(term.free)
-        fs = effect_scales(entries, engine.ctx)[0]
+        fs = effect_scales(_entries(terms, u[1:]), engine.ctx)[0]
         reid = steady_stribeck(base, engine.c, math.exp(u[0]) * (1.0 if fs is None else fs), steady)
         # refitted from the file's S(v) and, where it is used, from the new one; the better kept: an
         # effect the decision fitted beside the free curve (a drift a speed-ordered sweep shares with
