@@ -774,12 +774,6 @@ class FreeSteadyCurve:
         return r[idx] - self.evaluate(self.solve(r, mask, extra)[0], extra, idx)
 
 
-def memory_constant(r: np.ndarray, mask: np.ndarray, offset: np.ndarray | None) -> np.ndarray:
-    """The constant of ``initial_memory`` fitted to the residual ``r`` on ``mask``, over every
-    sample (``model_nuisance`` without the inertia)."""
-    return model_nuisance(r, mask, offset, None).correction
-
-
 @dataclass(frozen=True)
 class ModelNuisance:
     """What the model written leaves free beside its parameters, fitted to a residual by
@@ -1782,8 +1776,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # the model as given, its own effects included
     prior0 = [dict(e) for e in params.effects]
     pred_given = engine.predict(1.0, 1.0, prior0)
-    # the model as given, beside the constant of the memory's unknown start (``initial_memory``)
-    pred_given_c = pred_given + memory_constant(meas - pred_given, allm, cmp_.memory_offset)
+    # the model as given, beside what the model written leaves free as well (``model_nuisance``):
+    # the constant of the memory's unknown start (``initial_memory``) and, for friction taken
+    # from an applied force, eq. (8)'s inertia (not written either). So a file written by a
+    # diagnosis starts the next one from the gap its last step showed
+    pred_given_c = pred_given + model_nuisance(meas - pred_given, allm, cmp_.memory_offset, cmp_.acceleration).correction
     rms0 = _rms((meas - pred_given_c)[allm])
     say(0.05, "refitting the level and presliding stiffness (the alternative)")
     # the strokes' order sets how far a softening must be seen to settle (``softening_nc_max``):
@@ -2034,11 +2031,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           + (", the transition curve's segments" if refit_curve else "")
                           + ("" if named else " (nothing named: the parameter file is left as it was)"))
     if cmp_.inertia is not None:
-        # the gaps of the model written leave eq. (8)'s I free beside it, so that an inertia off in
-        # the file is not a friction misfit; it is not written: on a servo-driven stage a misfit of
-        # the model that follows the acceleration enters it as well
+        # the gaps of the model alone (as given, and written) leave eq. (8)'s I free beside it, so
+        # that an inertia off in the file is not a friction misfit; it is not written: on a
+        # servo-driven stage a misfit of the model that follows the acceleration enters it as well
         d_i = model_nuisance(meas - final.model, allm, cmp_.memory_offset, cmp_.acceleration).d_inertia
-        cmp_.notes.append(f"the gaps of the model written are of friction taken from the applied force with the "
+        cmp_.notes.append(f"the gaps of the model as given and written are of friction taken from the applied force with the "
                           f"inertia refitted beside it: the recording's friction follows the acceleration as if I "
                           f"were {cmp_.inertia + d_i:.4g}, against the {cmp_.inertia:.4g} it was taken with (not "
                           f"written: a misfit of the model that follows the acceleration enters it too)")

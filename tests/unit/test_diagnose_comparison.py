@@ -307,7 +307,7 @@ def test_initial_memory_leaves_the_first_curve_out_and_a_constant_free_until_the
     # Σ min(k_i·z, α_i·Fs). So until the first gross sliding they differ by the constant the
     # first curve left (every later curve starts from a reversal point that inherits it), and
     # after it they agree again.
-    from leuven_friction.identify.diagnose import initial_memory, memory_constant
+    from leuven_friction.identify.diagnose import initial_memory, model_nuisance
     from leuven_friction.model import Stribeck, StribeckSide, TransitionCurve, default_params, simulate_displacement
 
     k = np.array([1e6, 1e5, 3e4])
@@ -347,7 +347,7 @@ def test_initial_memory_leaves_the_first_curve_out_and_a_constant_free_until_the
     assert np.all(mem.offset[i_first_turn + 2: i_last_turn - 1] == 1) and not mem.offset[i_last_turn + 2:].any()
     r = measured - model
     loops = mem.offset > 0
-    left = r - memory_constant(r, mem.scored, mem.offset)
+    left = r - model_nuisance(r, mem.scored, mem.offset, None).correction
     # the first curve leaves a clear difference (the virgin curve is softer past the stiff
     # element's break-away), which the constant takes up through the loops that follow (not
     # exactly: the model keeps its start F_h = 0 as a minimum of its memory, which the first
