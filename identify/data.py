@@ -48,6 +48,58 @@ UNITS = {
 
 _KNOWN_NAMES = frozenset(a for names in ALIASES.values() for a in names)
 
+# Words of a header name (``tau_motor``, ``F_friction``, ``Fn_load``, ``x_mm``) that say its signal,
+# tried in this order where no name above matches the whole of it: a friction or normal-load word
+# wins over a force word (``F_friction`` is measured friction, ``normal_force`` the load).
+TOKENS = {
+    "friction": ("friction", "fric", "reibkraft", "reibmoment", "reibung"),
+    "normal_load": ("normal", "load", "fn", "preload", "normalkraft"),
+    "temperature": ("temperature", "temp", "celsius", "temperatur"),
+    "velocity": ("velocity", "vel", "speed", "omega", "qd", "qdot", "dq", "v", "geschwindigkeit"),
+    "time": ("time", "t", "timestamp", "zeit"),
+    "position": ("position", "pos", "x", "q", "angle", "theta", "displacement", "disp", "encoder", "enc", "weg",
+                 "winkel"),
+    "force": ("force", "torque", "tau", "u", "trq", "moment", "kraft", "drehmoment", "effort", "f"),
+}
+# a reference, set point or error of a signal is not the signal (a commanded torque is the applied one)
+_NOT_MEASURED = frozenset(("ref", "des", "desired", "cmd", "command", "commanded", "setpoint", "sp", "target",
+                           "demand", "err", "error"))
+
+
+def recognise(key: str, unit: str | None = None) -> tuple[str | None, str | None]:
+    """The signal a header name (lower case, its bracketed ``unit`` apart) names by its words, and
+    a unit written as its last word: ``tau_motor`` → force, ``f_friction`` → friction,
+    ``x_mm`` → position in mm. A signal whose units the header's is not one of is passed over
+    (``tau_load [N*m]`` is a torque, not a normal load). (None, None) when no word says."""
+    words = [w for w in key.split("_") if w]
+    word_unit = None
+    if unit is None and len(words) > 1 and (words[-1] in UNITS or words[-1] == "nm"):
+        word_unit, words = words[-1], words[:-1]
+    for sig, names in TOKENS.items():
+        if not any(w in names for w in words):
+            continue
+        if unit is not None and sig != "temperature" and _unit_si(unit, sig) not in SI_OF[sig]:
+            continue
+        if sig in ("position", "velocity") and any(w in _NOT_MEASURED for w in words):
+            return None, None
+        if word_unit is not None and _unit_si(word_unit, sig) not in SI_OF[sig]:
+            word_unit = None  # a last word that is no unit of this signal ("tau_m") is part of the name
+        return sig, word_unit
+    return None, None
+
+
+# the SI units each signal may land in (a header's unit of another kind is refused)
+SI_OF = {"time": ("s",), "position": ("m", "rad"), "force": ("N", "N*m"), "friction": ("N", "N*m"),
+         "velocity": ("m/s", "rad/s"), "normal_load": ("N",), "temperature": ("degC", "K")}
+
+
+def _unit_si(unit: str, sig: str) -> str | None:
+    """The SI unit a header's unit lands in for ``sig`` (None when unknown)."""
+    key = unit.strip().lower().replace(" ", "") if unit.strip().lower() != "n m" else "n m"
+    if key == "nm" and sig in ("force", "friction"):
+        key = "nm_torque"  # 'Nm' in a force column is newton-metre, not nanometre
+    return UNITS[key][1] if key in UNITS else None
+
 MIN_SAMPLES = 10
 
 
@@ -66,6 +118,7 @@ class Recording:
     columns: dict = field(default_factory=dict)  # signal -> column name in the file
     units: dict = field(default_factory=dict)  # signal -> SI unit
     notes: list = field(default_factory=list)  # what was assumed or converted
+    ignored: list = field(default_factory=list)  # the file's columns no signal was taken from
 
     def __len__(self) -> int:
         return len(self.time)
@@ -141,7 +194,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         # only the columns a signal can come from: the other columns of a wide file cost nothing
         explicit = set((columns or {}).values())
         keys = _KNOWN_NAMES | {_split_header(c)[0] for c in explicit}  # "Zeit" reads "Zeit [ms]" too
-        df = read_table_file(path, usecols=lambda c: str(c) in explicit or _split_header(c)[0] in keys)
+        df = read_table_file(path, usecols=lambda c: (str(c) in explicit or _split_header(c)[0] in keys
+                                                      or recognise(*_split_header(c))[0] is not None))
     else:
         df = _read_table(path, text)
     encoding = df.attrs.get("encoding", encoding)
@@ -167,6 +221,21 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 mapping[sig] = col
                 taken.add(col)
                 break
+    # then by the words of the names left: one column a signal, or none where two could be it
+    by_words = {}
+    for col, (key, unit) in headers.items():
+        sig, unit_word = recognise(key, unit) if col not in taken else (None, None)
+        if sig is not None and sig not in mapping:
+            by_words.setdefault(sig, []).append(col)
+            if unit is None and unit_word is not None:
+                headers[col] = (key, unit_word)
+    notes = []
+    for sig, cols in by_words.items():
+        if len(cols) == 1:
+            mapping[sig] = cols[0]
+            notes.append(f"{cols[0]}: taken as {sig} by its name")
+        else:
+            notes.append(f"{', '.join(cols)} could each be {sig}: none taken (name one with --columns {sig}=<column>)")
     missing = [s for s in require if s not in mapping]
     if missing:
         raise DataError(
@@ -175,7 +244,6 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         )
 
     rec = Recording(time=np.empty(0), source=str(path))
-    notes = []
     for sig, col in mapping.items():
         raw = df[col]
         values = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=np.float64)
@@ -194,6 +262,9 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             if key not in UNITS:
                 raise DataError(f"{path}: column {col!r}: unknown unit {unit!r}")
             factor, si = UNITS[key]
+            if si not in SI_OF[sig]:
+                raise DataError(f"{path}: column {col!r} was taken as {sig}, but {unit!r} is a unit of {si}, not "
+                                f"of {' or '.join(SI_OF[sig])}; name the columns with --columns {sig}=<column>")
             if factor != 1.0:
                 values = values * factor
                 notes.append(f"{col}: converted from {unit} to {si}")
@@ -203,6 +274,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         setattr(rec, sig, values)
         rec.columns[sig] = col
     ignored = [c for c in in_file if c not in mapping.values()]
+    rec.ignored = ignored
     if ignored:
         notes.append(f"ignored columns: {', '.join(ignored)}")
     if encoding != "utf-8-sig":

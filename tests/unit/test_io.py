@@ -242,3 +242,44 @@ def test_windows_1252_after_the_sniffed_head(tmp_path):
     f.write_bytes(("Time [ms],Position [mm],Force [N],Bemerkung\n" + rows).encode() + "5999,1,2,Ma\xdf\n".encode("cp1252"))
     with pytest.raises(DataError, match="row 6002: time 5999 does not increase"):
         load_recording(f)  # read through to the last line (which repeats a time stamp)
+
+
+@pytest.mark.parametrize("header, signals", [
+    # a motor torque and a measured friction named as loggers name them, with the unit as a last word
+    ("t [s],q [rad],tau_motor [N*m]", {"time": 1.0, "position": 1.0, "force": 1.0}),
+    ("t_ms,x_mm,F_friction [mN],Fn_load [N]", {"time": 1e-3, "position": 1e-3, "friction": 1e-3, "normal_load": 1.0}),
+    ("time,joint_position [deg],torque_cmd [N*m]", {"time": 1.0, "position": np.pi / 180, "force": 1.0}),
+])
+def test_columns_are_recognised_by_the_words_of_their_names(tmp_path, header, signals):
+    # column 0 (time) holds i, column k the numbers (i + 1)·(k + 1)
+    path = tmp_path / "words.csv"
+    width = len(header.split(","))
+    path.write_text(header + "\n" + "".join(f"{i}," + ",".join(f"{(i + 1) * (k + 1)}" for k in range(1, width)) + "\n"
+                                            for i in range(40)))
+    rec = load_recording(path)
+    assert set(rec.columns) == set(signals)
+    i = np.arange(40.0)
+    for k, (sig, factor) in enumerate(signals.items()):
+        # in SI by the unit its header writes, in brackets or as the last word of its name
+        expected = (i if k == 0 else (i + 1) * (k + 1)) * factor
+        np.testing.assert_allclose(getattr(rec, sig), expected, rtol=1e-12)
+
+
+def test_two_columns_that_could_each_be_a_signal_are_not_guessed_between(tmp_path):
+    path = tmp_path / "two.csv"
+    path.write_text("t [s],q [rad],tau_motor [N*m],tau_load [N*m]\n" + "".join(f"{i},{i},{i},{i}\n" for i in range(20)))
+    rec = load_recording(path)
+    assert rec.force is None
+    assert any("tau_motor [N*m], tau_load [N*m] could each be force: none taken" in n for n in rec.notes), rec.notes
+    # a reference is not the measured position
+    ref = tmp_path / "ref.csv"
+    ref.write_text("t [s],q_ref [rad],tau [N*m]\n" + "".join(f"{i},{i},{i}\n" for i in range(20)))
+    with pytest.raises(DataError, match=r"no column for position \(columns: t \[s\], q_ref \[rad\], tau \[N\*m\]"):
+        load_recording(ref, require=("time", "position"))
+
+
+def test_a_unit_of_another_kind_is_refused_naming_the_column(tmp_path):
+    path = tmp_path / "kind.csv"
+    path.write_text("time [s],position [s],force [N]\n" + "".join(f"{i},{i},{i}\n" for i in range(20)))
+    with pytest.raises(DataError, match=r"column 'position \[s\]' was taken as position, but 's' is a unit of s"):
+        load_recording(path)
