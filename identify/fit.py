@@ -138,9 +138,33 @@ def knots_from_data(datasets, n: float = 7.0) -> np.ndarray:
         if zi - z[-1] >= 2.0 * resolution:
             z.append(zi)
     if len(z) < 2:
-        raise IdentificationError(f"the presliding displacement range ({reach:.3g}) is within two position-noise σ "
-                                  f"({resolution:.3g}): the transition curve cannot be resolved")
+        raise UnresolvedCurve(reach, resolution)
     return np.array(z)
+
+
+class UnresolvedCurve(IdentificationError):
+    """The presliding branches reach no further than two position-noise σ (or encoder steps):
+    the transition curve's abscissas cannot be placed; ``reach`` is how far they went."""
+
+    def __init__(self, reach: float, resolution: float):
+        super().__init__(f"the presliding displacement range ({reach:.3g}) is within two position-noise σ "
+                         f"({resolution:.3g}): the transition curve cannot be resolved")
+        self.reach, self.resolution = reach, resolution
+
+
+def held_curve_for(curve: TransitionCurve, stribeck: Stribeck, reach: float | None) -> TransitionCurve:
+    """The paper's transition curve, held for a machine the data could not give one for, brought
+    to this machine's scale: F_d's top at F_s⁺ − F_s⁻ of the fitted S(v) (the outer loop's
+    span, as Table II's 100 N·m is Table I's 36 + 63), and, where the branches showed how far
+    presliding reaches (``reach``), its last knot there. A held value, not an estimate: the
+    KUKA joint's 100 N·m over 5.2·10⁻⁴ rad means nothing on a 10 N·m joint."""
+    if curve.kind != "piecewise_linear" or not curve.F:
+        return curve
+    span = stribeck.positive.Fs - stribeck.negative.Fs
+    fz = span / curve.F[-1] if span > 0 and curve.F[-1] > 0 else 1.0
+    zz = reach / curve.z[-1] if reach and reach > 0 and curve.z[-1] > 0 else 1.0
+    return TransitionCurve(kind="piecewise_linear", z=tuple(float(v * zz) for v in curve.z),
+                           F=tuple(float(v * fz) for v in curve.F))
 
 
 def check_knots(knots, datasets) -> np.ndarray:
@@ -259,8 +283,19 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                      f"({'; '.join(slid)}): they slid, left out of the transition curve's likelihood")
     n_br = sum(len(d.branches) for d in datasets)
     tfit = None
+    unresolved = None
+    if n_br and knots is None:
+        try:
+            z = knots_from_data(datasets, n)
+        except UnresolvedCurve as e:
+            # presliding shorter than the position sensor resolves (an encoder step as long as the
+            # whole transition): the curve is held, said so, and S(v) is still fitted
+            unresolved = e
+            notes.append(f"transition curve: {e} (held, not estimated)")
+            n_br = 0
+    elif n_br:
+        z = check_knots(knots, datasets)
     if n_br:
-        z = knots_from_data(datasets, n) if knots is None else check_knots(knots, datasets)
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
         tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
         flat = list(tfit.flat)
@@ -283,7 +318,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         unbounded = True
     else:
         unbounded = False
-    why_curve = "the branches do not bound F_d" if unbounded else "no presliding data"
+    why_curve = ("the branches do not bound F_d" if unbounded else
+                 "presliding shorter than the position sensor resolves" if unresolved else "no presliding data")
     if tfit is not None:
         bad = [i for i in range(1, len(tfit.F)) if not (tfit.stderr[i] < 0.5 * (tfit.F[i] - tfit.F[i - 1]) + 0.5 * tfit.F[i])]
         if bad:
@@ -293,6 +329,16 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         notes.extend(tfit.notes)
         if not fit_n:
             held["n"] = f"fixed at {n:g} (the paper's choice; --fit-n estimates it)"
+    elif base is None and unresolved:
+        # no file of this machine's to hold from, but branches that show how far presliding
+        # reaches: the paper's curve, brought to this machine's scale
+        # (branches that never left one encoder step reach 0: the range is then of the step's order)
+        reach = max(unresolved.reach, unresolved.resolution)
+        p = p.replace(transition_curve=held_curve_for(p.transition_curve, p.stribeck, reach))
+        held["transition_curve"] = (f"{why_curve}: the paper's KUKA IR 361 curve, its F_d scaled to this fit's "
+                                    f"F_s⁺ − F_s⁻ and its last knot to the presliding reach seen, or the sensor's "
+                                    f"resolution where larger ({reach:.3g}) (give --params with this machine's curve)")
+        held["n"] = f"{why_curve}: kept {start}"
     else:
         held["transition_curve"] = f"{why_curve}: kept {start}"
         held["n"] = f"{why_curve}: kept {start}"

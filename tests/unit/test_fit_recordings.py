@@ -253,3 +253,28 @@ def test_a_load_varying_through_the_session_is_fitted_over_all_loads(kind):
         Fc_fit = abs(getattr(res.params.stribeck, side).Fc)
         # within the 10 % a fit of this generator keeps to at one load (see _check_against_truth)
         assert 0.9 * np.min(scale) * Fc_true < Fc_fit < 1.1 * np.max(scale) * Fc_true
+
+
+def test_presliding_shorter_than_an_encoder_step_holds_the_curve_and_still_fits_sv():
+    # another generator (synth/elsewhere.py: GMS elements, a PID at 500 Hz, an 18-bit encoder of
+    # 2.4e-5 rad against a presliding range of about 4e-5 rad, a motor torque named tau_motor):
+    # the transition curve cannot be resolved, so it is held and said so; S(v) is estimated
+    from synth.elsewhere import make
+
+    df, truth = make("robot_joint", 2, "none")
+    res = fit_recordings([_rec(df, "joint.csv")], refine=False)
+    assert "sensor resolves" in res.held["transition_curve"]
+    assert res.transition_fit is None and not any(k.startswith("transition_curve") for k in res.params.uncertainty)
+    f = truth["friction"]
+    # held at this machine's scale, not the KUKA joint's 100 N·m over 5.2e-4 rad: F_d's top at the
+    # generator's outer-loop span F_s⁺ + |F_s⁻|, its last knot within a few encoder steps
+    curve = res.params.transition_curve
+    assert curve.F[-1] == pytest.approx(f["Fs_pos"] + f["Fs_neg"], rel=0.02)
+    step = 2 * np.pi / 2**18
+    assert step <= curve.z[-1] <= 4 * step, curve.z
+    for side, sign, tag in (("positive", 1, "pos"), ("negative", -1, "neg")):
+        st = getattr(res.params.stribeck, side)
+        for k, t in (("Fs", sign * f[f"Fs_{tag}"]), ("Fc", sign * f[f"Fc_{tag}"]), ("vs", sign * f["vs"]),
+                     ("sigma2", f["viscous"])):
+            sd = res.params.uncertainty[f"stribeck.{side}.{k}"]
+            assert abs(getattr(st, k) - t) < 3 * sd + 0.01 * abs(t), (side, k, getattr(st, k), t, sd)
