@@ -351,14 +351,17 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
         return _position_comparison(rec, params, t, x, f, vel, sdx, w, min_exc, v_rest, v_noise, path, notes)
     f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
     inertia = params.inertia
-    L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t))
+    longest = averaging_limit(t, path, min_exc)
+    L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t), longest)
     model_friction = simulate_displacement(params, t, path).friction_force
-    est = inertia_from_force(f, vel, t, L, v_rest)
+    # the inertia is read at the shortest window, whatever the file's inertia would ask for (a
+    # file's I many times the machine's asked for a window too long to read I in)
+    est = inertia_from_force(f, vel, t, averaging_length(0.0, f_sd, v_noise, dt, w, len(t), longest), v_rest)
     if est is not None and est.stderr < 0.25 * est.value and abs(est.value - inertia) > 3 * est.stderr:
         # a model-free regression can be misled (anything in the friction that follows the
         # acceleration enters I): the recording's value is used only if the model as given then
         # agrees with the data better
-        L2 = averaging_length(est.value, f_sd, v_noise, dt, w, len(t))
+        L2 = averaging_length(est.value, f_sd, v_noise, dt, w, len(t), longest)
         gaps = [_rms(friction_from_force(f, vel, i, t, n) - uniform_filter1d(model_friction, n, mode="nearest"))
                 for i, n in ((inertia, L), (est.value, L2))]
         if gaps[1] < gaps[0]:
@@ -382,14 +385,31 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     return _with_input_noise(cmp_, model_friction)
 
 
-def averaging_length(inertia: float, f_sd: float, v_sd: float, dt: float, window: int, n: int) -> int:
+def averaging_length(inertia: float, f_sd: float, v_sd: float, dt: float, window: int, n: int,
+                     longest: int | None = None) -> int:
     """Samples to average eq. (8) over: long enough that the inertial term I·Δv/T, from a
     velocity with noise sd ``v_sd``, is no noisier than the averaged force (√2·I·v_sd/T ≤
-    f_sd/√L), and at least the path's smoothing window; odd, at most 1 % of the record."""
+    f_sd/√L), and at least the path's smoothing window; odd, at most 1 % of the record and
+    at most ``longest`` (``averaging_limit``)."""
     need = (math.sqrt(2.0) * inertia * v_sd / (dt * f_sd)) ** 2 if f_sd > 0 else 1.0
     L = int(math.ceil(max(need, window, 5)))
-    L = min(L, max(5, n // 100))
+    L = min(L, max(5, n // 100), max(5, longest or n))
     return L + 1 - L % 2
+
+
+AVERAGING_PER_STROKE = 10  # eq. (8) is averaged over at most this fraction (1/10) of a typical stroke's time
+
+
+def averaging_limit(t: np.ndarray, path: np.ndarray, min_excursion: float) -> int:
+    """The longest averaging of eq. (8) that still resolves the motion: a tenth of the median
+    time between significant reversals, in samples. An encoder's velocity next to a quiet
+    torque asks for windows of seconds (a quiet force is no reason to average), and one as long
+    as a stroke leaves nothing of its transitions to compare."""
+    turns = np.flatnonzero(np.diff(significant_reversals(path, min_excursion)) > 0)
+    if len(turns) < 3:
+        return len(t)
+    dt = float(np.median(np.diff(t)))
+    return max(5, int(np.median(np.diff(t[turns])) / (AVERAGING_PER_STROKE * dt)))
 
 
 JACKKNIFE_BLOCKS = 10
@@ -1505,6 +1525,43 @@ class Diagnosis:
         return "\n".join(L)
 
 
+REST_UNRESOLVED = 0.25  # friction moving by more than this share of its sliding level while the position rests
+
+
+@dataclass(frozen=True)
+class UnresolvedRest:
+    mask: np.ndarray  # samples at rest whose compared path does not move
+    ratio: float  # how far the friction moves over such rests, as a share of the sliding level
+    runs: int
+
+    @property
+    def unresolved(self) -> bool:
+        return self.ratio > REST_UNRESOLVED
+
+
+def unresolved_rest(cmp_: Comparison) -> UnresolvedRest:
+    """Does the position resolve presliding? Over every rest (below the rest speed, the compared
+    path unchanged, at least two averaging lengths long) the range of the friction taken from
+    the applied force, weighted by the rest's length, as a share of the median |friction| in
+    gross sliding. A sensor that resolves presliding sees the contact's spring move while the
+    applied force changes, so its rests hold a nearly constant friction (2–10 % on the
+    generator's robot joints and linear stages); an encoder step as long as the whole
+    presliding range (an 18-bit joint encoder on a stiff contact) hides it, and the friction
+    swings across the static band while the position stands (88–117 % on such joints): the
+    model, driven along that position, cannot know it."""
+    path, meas, L = cmp_.path, cmp_.measured, max(cmp_.average, 1)
+    still = np.r_[False, np.diff(path) == 0.0] & (np.abs(cmp_.velocity) < cmp_.v_rest)
+    edges = np.flatnonzero(np.diff(np.r_[0, still.astype(np.int8), 0]))
+    runs = [(a, b) for a, b in zip(edges[::2], edges[1::2]) if b - a >= 2 * L]
+    sliding = gross_sliding(cmp_)
+    level = float(np.median(np.abs(meas[sliding]))) if sliding.any() else float(np.median(np.abs(meas)))
+    if not runs or level <= 0:
+        return UnresolvedRest(still, 0.0, len(runs))
+    span = np.array([np.ptp(meas[a + L // 2:b - L // 2]) for a, b in runs])
+    w = np.array([b - a for a, b in runs], dtype=float)
+    return UnresolvedRest(still, float(np.sum(span * w) / np.sum(w)) / level, len(runs))
+
+
 def median_stroke(cmp_: Comparison) -> float:
     """Median travel between two significant reversals of the path (back-travel over
     ``min_excursion``), the ends of the record counting as reversals: a velocity flickering
@@ -1770,6 +1827,17 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         elif allm.all() and math.isnan(mem.t_known):
             cmp_.notes.append("the recording reverses late: the model's memory at its start (F_h = 0, the outer loop "
                               "only) is assumed for every sample")
+    if cmp_.inertia is not None:
+        rest = unresolved_rest(cmp_)
+        if rest.unresolved:
+            allm = allm & ~rest.mask
+            cmp_.notes.append(f"while the position rests (the compared path unchanged) the friction taken from "
+                              f"the applied force moves by {rest.ratio:.0%} of the sliding level (a length-weighted "
+                              f"mean over {rest.runs} rests; over {REST_UNRESOLVED:.0%} means the sensor does not "
+                              f"resolve presliding): the friction there is set by what is applied, not by a motion "
+                              f"the model could be driven along, and those {int(rest.mask.sum())} samples are not "
+                              f"compared; a change of the presliding spring alone (cyclic_softening) may not show "
+                              f"in what is left: a finer position sensor would tell")
     cmp_.scored = allm
     settle_noise_floor(cmp_, allm)
     engine = Engine(base_params, cmp_, s.free_steady)

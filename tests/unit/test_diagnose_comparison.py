@@ -13,6 +13,8 @@ from leuven_friction.identify.diagnose import (
     SpeedOrder,
     Term,
     averaging_length,
+    averaging_limit,
+    unresolved_rest,
     friction_from_force,
     gross_sliding,
     mean_acceleration,
@@ -52,6 +54,23 @@ def test_averaging_length_makes_the_inertial_term_no_noisier_than_the_averaged_f
     assert averaging_length(1.0, 0.1, 1e-5, 1e-3, 9, 100_000) == 9
     # never more than 1 % of the record
     assert averaging_length(1.0, 0.1, 1e-3, 1e-3, 5, 5_000) == 51
+    # nor than the motion resolves: here the 200 asked for, against a limit of 60 samples
+    assert averaging_length(1.0, 0.1, 1e-3, 1e-3, 5, 100_000, longest=60) == 61
+
+
+def test_the_averaging_limit_is_a_tenth_of_the_time_between_significant_reversals():
+    # a triangle wave reversing every 0.8 s at 500 Hz (400 samples), with an encoder's steps and
+    # wiggles below the significant excursion: a tenth of 400 samples
+    t = np.arange(40_000) / 500.0
+    x = 1e-3 * (2.0 * np.abs((t / 1.6) % 1.0 - 0.5) - 0.5)
+    x = np.round((x + 2e-6 * np.sin(2 * np.pi * 37 * t)) / 2.4e-5) * 2.4e-5
+    assert averaging_limit(t, x, 1e-4) in (39, 40, 41)
+    # the same motion logged at 2 kHz: the same time, four times the samples
+    t4 = np.arange(160_000) / 2000.0
+    x4 = np.round(1e-3 * (2.0 * np.abs((t4 / 1.6) % 1.0 - 0.5) - 0.5) / 2.4e-5) * 2.4e-5
+    assert averaging_limit(t4, x4, 1e-4) in range(158, 163)
+    # too few reversals to tell: no limit beyond the record
+    assert averaging_limit(t[:500], x[:500], 1e-4) == 500
 
 
 def _holds(speeds, n_per=400):
@@ -577,3 +596,35 @@ def test_steady_stribeck_identifies_s_of_v_anew_under_a_load_the_file_averaged_o
     # the file already holds the law: it fits within the levels' noise, and is kept
     same = steady_stribeck(truth, c, load, steady)
     assert same.gap_file < 2 * same.noise and not same.used
+
+
+def _rests_and_strokes(spring: float, q: float):
+    """A joint held still, pushed back and forth by ±6 within its static band (friction at rest
+    is what is applied), then slid at ±0.05 with friction ±10; the position is the motion the
+    contact's ``spring`` allows under that push, quantised to steps of ``q``."""
+    t = np.arange(20_000) * 2e-3
+    push = 6.0 * np.sin(2 * np.pi * t / 4.0)
+    rest = t < 20.0
+    x_true = np.where(rest, push / spring, 0.0)
+    slide = ~rest
+    v_true = np.where(slide, 0.05 * np.sign(np.sin(2 * np.pi * (t - 20.0) / 8.0)), 0.0)
+    x_true = x_true + np.cumsum(v_true) * 2e-3
+    friction = np.where(rest, push, 10.0 * np.sign(v_true))
+    x = np.round(x_true / q) * q
+    v = np.gradient(x_true, t)
+    c = Comparison("friction", t, friction, x, v, None, None, 0.05, q / math.sqrt(12), 5, 4 * q, 3e-3, average=5,
+                   z_presliding=1e-4)
+    return c
+
+
+def test_rests_are_unresolved_where_the_friction_swings_while_the_position_stands():
+    # a spring of 6e4 moves 1e-4 under the push: an encoder of 1e-6 sees it, so its rests (one
+    # step each) hold the friction within a step's worth of force, 6e4·1e-6 = 0.06, of the level 10
+    seen = unresolved_rest(_rests_and_strokes(6e4, 1e-6))
+    assert seen.runs > 50 and not seen.unresolved and seen.ratio < 0.05
+    # an encoder step of 4e-4 is longer than all of it: the friction swings over ±6 (12 of 10)
+    # while the position stands
+    hidden = unresolved_rest(_rests_and_strokes(6e4, 4e-4))
+    assert hidden.unresolved and hidden.ratio == pytest.approx(1.2, rel=0.1)
+    # the samples not compared are rests only: none of the sliding
+    assert not np.any(hidden.mask[10_000:] & (np.abs(_rests_and_strokes(6e4, 4e-4).velocity[10_000:]) > 0.01))
