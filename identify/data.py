@@ -48,57 +48,75 @@ UNITS = {
 
 _KNOWN_NAMES = frozenset(a for names in ALIASES.values() for a in names)
 
-# Words of a header name (``tau_motor``, ``F_friction``, ``Fn_load``, ``x_mm``) that say its signal,
-# tried in this order where no name above matches the whole of it: a friction or normal-load word
-# wins over a force word (``F_friction`` is measured friction, ``normal_force`` the load).
-TOKENS = {
+# Words of a header name (``tau_motor``, ``F_friction``, ``x_mm``) that say its signal, tried
+# where no name above matches the whole of it, in this order (a friction word wins over a force
+# word: ``F_friction`` is measured friction). Only for the signals a fit or a diagnosis cannot do
+# without and for measured friction: a velocity, load or temperature changes what is compared
+# (``motor_speed``, ``load_cell``), so those are taken by their full names alone.
+WORDS = {
     "friction": ("friction", "fric", "reibkraft", "reibmoment", "reibung"),
-    "normal_load": ("normal", "load", "fn", "preload", "normalkraft"),
-    "temperature": ("temperature", "temp", "celsius", "temperatur"),
-    "velocity": ("velocity", "vel", "speed", "omega", "qd", "qdot", "dq", "v", "geschwindigkeit"),
     "time": ("time", "t", "timestamp", "zeit"),
     "position": ("position", "pos", "x", "q", "angle", "theta", "displacement", "disp", "encoder", "enc", "weg",
                  "winkel"),
-    "force": ("force", "torque", "tau", "u", "trq", "moment", "kraft", "drehmoment", "effort", "f"),
+    "force": ("force", "torque", "tau", "trq", "moment", "kraft", "drehmoment", "effort", "f"),
 }
-# a reference, set point or error of a signal is not the signal (a commanded torque is the applied one)
-_NOT_MEASURED = frozenset(("ref", "des", "desired", "cmd", "command", "commanded", "setpoint", "sp", "target",
-                           "demand", "err", "error"))
+# a reference, an estimate or a model of a signal is not the signal ...
+_NOT_MEASURED = frozenset(("ref", "des", "desired", "target", "err", "error", "model", "est", "estimate", "estimated",
+                           "comp", "compensation", "ff", "feedforward", "sim", "simulated", "pred", "predicted",
+                           "nominal", "offset", "limit", "max", "min"))
+# ... nor a command of a motion (a commanded torque is the applied one)
+_COMMANDED = frozenset(("cmd", "command", "commanded", "setpoint", "sp", "demand"))
 
-
-def recognise(key: str, unit: str | None = None) -> tuple[str | None, str | None]:
-    """The signal a header name (lower case, its bracketed ``unit`` apart) names by its words, and
-    a unit written as its last word: ``tau_motor`` → force, ``f_friction`` → friction,
-    ``x_mm`` → position in mm. A signal whose units the header's is not one of is passed over
-    (``tau_load [N*m]`` is a torque, not a normal load). (None, None) when no word says."""
-    words = [w for w in key.split("_") if w]
-    word_unit = None
-    if unit is None and len(words) > 1 and (words[-1] in UNITS or words[-1] == "nm"):
-        word_unit, words = words[-1], words[:-1]
-    for sig, names in TOKENS.items():
-        if not any(w in names for w in words):
-            continue
-        if unit is not None and sig != "temperature" and _unit_si(unit, sig) not in SI_OF[sig]:
-            continue
-        if sig in ("position", "velocity") and any(w in _NOT_MEASURED for w in words):
-            return None, None
-        if word_unit is not None and _unit_si(word_unit, sig) not in SI_OF[sig]:
-            word_unit = None  # a last word that is no unit of this signal ("tau_m") is part of the name
-        return sig, word_unit
-    return None, None
-
-
-# the SI units each signal may land in (a header's unit of another kind is refused)
+# the SI units each signal may land in (a header's unit of another kind is refused), and their names
 SI_OF = {"time": ("s",), "position": ("m", "rad"), "force": ("N", "N*m"), "friction": ("N", "N*m"),
          "velocity": ("m/s", "rad/s"), "normal_load": ("N",), "temperature": ("degC", "K")}
+_KIND = {"s": "time", "m": "length", "rad": "angle", "N": "force", "N*m": "torque", "m/s": "speed",
+         "rad/s": "angular speed", "degC": "temperature", "K": "temperature"}
 
 
-def _unit_si(unit: str, sig: str) -> str | None:
-    """The SI unit a header's unit lands in for ``sig`` (None when unknown)."""
+def unit_of(unit: str, sig: str) -> tuple[float, str] | None:
+    """(factor to SI, SI unit) of a header's unit for ``sig``; None when unknown. 'Nm' in a force
+    or friction column is newton-metre, not nanometre."""
     key = unit.strip().lower().replace(" ", "") if unit.strip().lower() != "n m" else "n m"
     if key == "nm" and sig in ("force", "friction"):
-        key = "nm_torque"  # 'Nm' in a force column is newton-metre, not nanometre
-    return UNITS[key][1] if key in UNITS else None
+        key = "nm_torque"
+    return UNITS.get(key)
+
+
+def _fits(unit: str | None, sig: str) -> bool:
+    u = unit_of(unit, sig) if unit is not None else None
+    return u is not None and u[1] in SI_OF[sig]
+
+
+def recognise(key: str, unit: str | None = None) -> list:
+    """The signals a header name (lower case, its bracketed ``unit`` apart) may name by its words,
+    most likely first, each with a unit written as the name's last word (or None):
+    ``tau_motor`` → force, ``f_friction`` → friction, ``x_mm`` → position in mm, ``t_oil_c`` →
+    the alias ``t_oil`` in °C. A signal the bracketed unit is not a unit of is passed over
+    (``tau_load [N*m]`` is no normal load), and so is a reference or an estimate (``q_ref``,
+    ``friction_model``). [] when no word says."""
+    words = [w for w in key.split("_") if w]
+    word_unit = None
+    if unit is None and len(words) > 1 and words[-1] in UNITS:
+        word_unit, words = words[-1], words[:-1]
+    base = "_".join(words)
+    for sig, names in ALIASES.items():
+        if word_unit is not None and base in names:  # a known name followed by its unit
+            return [(sig, word_unit if _fits(word_unit, sig) else None)]
+    if any(w in _NOT_MEASURED for w in words):
+        return []
+    out = []
+    for sig, names in WORDS.items():
+        if not any(w in names for w in words):
+            continue
+        if sig in ("time", "position") and any(w in _COMMANDED for w in words):
+            continue
+        if unit is not None and not _fits(unit, sig):
+            continue
+        # a last word that is no unit of this signal ("tau_m") is part of the name
+        out.append((sig, word_unit if _fits(word_unit, sig) else None))
+    return out
+
 
 MIN_SAMPLES = 10
 
@@ -119,6 +137,14 @@ class Recording:
     units: dict = field(default_factory=dict)  # signal -> SI unit
     notes: list = field(default_factory=list)  # what was assumed or converted
     ignored: list = field(default_factory=list)  # the file's columns no signal was taken from
+    ambiguous: dict = field(default_factory=dict)  # signal -> columns whose names could each be it
+
+    def unrecognised(self, *signals: str) -> str:
+        """Why none of the file's columns was taken as one of ``signals``, for a message."""
+        could = [f"{', '.join(self.ambiguous[s])} could each be {s}" for s in signals if s in self.ambiguous]
+        if could:
+            return "; ".join(could)
+        return f"none of {_listing(self.ignored)} was recognised as one" if self.ignored else ""
 
     def __len__(self) -> int:
         return len(self.time)
@@ -128,6 +154,12 @@ class Recording:
 
 
 _UNIT_RE = re.compile(r"^(.*?)\s*[\[(]\s*([^\])]+?)\s*[\])]\s*$")
+
+
+def _listing(cols, most: int = 8) -> str:
+    """Column names for a one-line message: the first ``most`` of a wide file, and how many more."""
+    cols = list(cols)
+    return ", ".join(cols[:most]) + (f" and {len(cols) - most} more" if len(cols) > most else "")
 
 
 def _split_header(name: str) -> tuple[str, str | None]:
@@ -195,7 +227,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         explicit = set((columns or {}).values())
         keys = _KNOWN_NAMES | {_split_header(c)[0] for c in explicit}  # "Zeit" reads "Zeit [ms]" too
         df = read_table_file(path, usecols=lambda c: (str(c) in explicit or _split_header(c)[0] in keys
-                                                      or recognise(*_split_header(c))[0] is not None))
+                                                      or bool(recognise(*_split_header(c)))))
     else:
         df = _read_table(path, text)
     encoding = df.attrs.get("encoding", encoding)
@@ -221,25 +253,32 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 mapping[sig] = col
                 taken.add(col)
                 break
-    # then by the words of the names left: one column a signal, or none where two could be it
+    # then by the words of the names left (``recognise``): each column for the first signal it
+    # may be that no column has yet; one column a signal, none where two could be it
     by_words = {}
     for col, (key, unit) in headers.items():
-        sig, unit_word = recognise(key, unit) if col not in taken else (None, None)
-        if sig is not None and sig not in mapping:
-            by_words.setdefault(sig, []).append(col)
-            if unit is None and unit_word is not None:
-                headers[col] = (key, unit_word)
+        if col in taken:
+            continue
+        for sig, unit_word in recognise(key, unit):
+            if sig not in mapping:
+                by_words.setdefault(sig, []).append(col)
+                if unit is None and unit_word is not None:
+                    headers[col] = (key, unit_word)
+                break
     notes = []
+    ambiguous = {}
     for sig, cols in by_words.items():
         if len(cols) == 1:
             mapping[sig] = cols[0]
             notes.append(f"{cols[0]}: taken as {sig} by its name")
         else:
+            ambiguous[sig] = cols
             notes.append(f"{', '.join(cols)} could each be {sig}: none taken (name one with --columns {sig}=<column>)")
     missing = [s for s in require if s not in mapping]
     if missing:
+        could = "".join(f"; {', '.join(ambiguous[m])} could each be {m}" for m in missing if m in ambiguous)
         raise DataError(
-            f"{path}: no column for {', '.join(missing)} (columns: {', '.join(in_file)}; "
+            f"{path}: no column for {', '.join(missing)} (columns: {_listing(in_file)}{could}; "
             f"name them with --columns {missing[0]}=<column>)"
         )
 
@@ -256,15 +295,13 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             )
         unit = (units or {}).get(sig) or headers[col][1]
         if unit is not None and sig != "temperature":
-            key = unit.strip().lower().replace(" ", "") if unit.strip().lower() != "n m" else "n m"
-            if key == "nm" and sig in ("force", "friction"):
-                key = "nm_torque"  # 'Nm' in a force column is newton-metre, not nanometre
-            if key not in UNITS:
+            if unit_of(unit, sig) is None:
                 raise DataError(f"{path}: column {col!r}: unknown unit {unit!r}")
-            factor, si = UNITS[key]
+            factor, si = unit_of(unit, sig)
             if si not in SI_OF[sig]:
-                raise DataError(f"{path}: column {col!r} was taken as {sig}, but {unit!r} is a unit of {si}, not "
-                                f"of {' or '.join(SI_OF[sig])}; name the columns with --columns {sig}=<column>")
+                raise DataError(f"{path}: column {col!r} was taken as {sig}, but its unit {unit!r} is a {_KIND[si]} "
+                                f"unit; {sig} needs {' or '.join(SI_OF[sig])} or a multiple: correct the header's "
+                                f"unit, or name another column with --columns {sig}=<column>")
             if factor != 1.0:
                 values = values * factor
                 notes.append(f"{col}: converted from {unit} to {si}")
@@ -275,6 +312,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         rec.columns[sig] = col
     ignored = [c for c in in_file if c not in mapping.values()]
     rec.ignored = ignored
+    rec.ambiguous = ambiguous
     if ignored:
         notes.append(f"ignored columns: {', '.join(ignored)}")
     if encoding != "utf-8-sig":

@@ -393,7 +393,7 @@ def averaging_length(inertia: float, f_sd: float, v_sd: float, dt: float, window
     at most ``longest`` (``averaging_limit``)."""
     need = (math.sqrt(2.0) * inertia * v_sd / (dt * f_sd)) ** 2 if f_sd > 0 else 1.0
     L = int(math.ceil(max(need, window, 5)))
-    L = min(L, max(5, n // 100), max(5, longest or n))
+    L = min(L, max(5, n // 100), max(window, 5, longest or n))
     return L + 1 - L % 2
 
 
@@ -1526,6 +1526,7 @@ class Diagnosis:
 
 
 REST_UNRESOLVED = 0.25  # friction moving by more than this share of its sliding level while the position rests
+REST_MIN_LEFT = 0.2  # ... leaves those rests out, unless that would leave less than this share compared
 
 
 @dataclass(frozen=True)
@@ -1829,7 +1830,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                               "only) is assumed for every sample")
     if cmp_.inertia is not None:
         rest = unresolved_rest(cmp_)
-        if rest.unresolved:
+        if rest.unresolved and (allm & ~rest.mask).sum() < REST_MIN_LEFT * allm.sum():
+            cmp_.notes.append(f"while the position rests the friction taken from the applied force moves by "
+                              f"{rest.ratio:.0%} of the sliding level: the sensor does not resolve presliding, but "
+                              f"leaving those rests out would leave under {REST_MIN_LEFT:.0%} of the record, so "
+                              f"they are compared and the gap there says more about the sensor than the model")
+        elif rest.unresolved:
             allm = allm & ~rest.mask
             cmp_.notes.append(f"while the position rests (the compared path unchanged) the friction taken from "
                               f"the applied force moves by {rest.ratio:.0%} of the sliding level (a length-weighted "

@@ -152,17 +152,17 @@ class UnresolvedCurve(IdentificationError):
         self.reach, self.resolution = reach, resolution
 
 
-def held_curve_for(curve: TransitionCurve, stribeck: Stribeck, reach: float | None) -> TransitionCurve:
+def held_curve_for(curve: TransitionCurve, stribeck: Stribeck, reach: float) -> TransitionCurve:
     """The paper's transition curve, held for a machine the data could not give one for, brought
     to this machine's scale: F_d's top at F_s⁺ − F_s⁻ of the fitted S(v) (the outer loop's
-    span, as Table II's 100 N·m is Table I's 36 + 63), and, where the branches showed how far
-    presliding reaches (``reach``), its last knot there. A held value, not an estimate: the
+    span, as Table II's 100 N·m is Table I's 36 + 63) and its last knot at ``reach``, how far
+    the branches showed presliding to reach. A held value, not an estimate: the
     KUKA joint's 100 N·m over 5.2·10⁻⁴ rad means nothing on a 10 N·m joint."""
-    if curve.kind != "piecewise_linear" or not curve.F:
-        return curve
     span = stribeck.positive.Fs - stribeck.negative.Fs
-    fz = span / curve.F[-1] if span > 0 and curve.F[-1] > 0 else 1.0
-    zz = reach / curve.z[-1] if reach and reach > 0 and curve.z[-1] > 0 else 1.0
+    if (curve.kind != "piecewise_linear" or not curve.F or not span > 0 or not curve.F[-1] > 0
+            or not reach > 0 or not curve.z[-1] > 0):
+        return curve  # nothing to scale by: the curve as it was (the caller says so)
+    fz, zz = span / curve.F[-1], reach / curve.z[-1]
     return TransitionCurve(kind="piecewise_linear", z=tuple(float(v * zz) for v in curve.z),
                            F=tuple(float(v * fz) for v in curve.F))
 
@@ -334,15 +334,20 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         # reaches: the paper's curve, brought to this machine's scale
         # (branches that never left one encoder step reach 0: the range is then of the step's order)
         reach = max(unresolved.reach, unresolved.resolution)
-        p = p.replace(transition_curve=held_curve_for(p.transition_curve, p.stribeck, reach))
-        held["transition_curve"] = (f"{why_curve}: the paper's KUKA IR 361 curve, its F_d scaled to this fit's "
-                                    f"F_s⁺ − F_s⁻ and its last knot to the presliding reach seen, or the sensor's "
-                                    f"resolution where larger ({reach:.3g}) (give --params with this machine's curve)")
+        scaled = held_curve_for(p.transition_curve, p.stribeck, reach)
+        held["transition_curve"] = (
+            f"{why_curve}: the paper's KUKA IR 361 curve, its F_d scaled to this fit's F_s⁺ − F_s⁻ and its last "
+            f"knot to the presliding reach seen, or the sensor's resolution where larger ({reach:.3g}) (give --params "
+            f"with this machine's curve)" if scaled is not p.transition_curve else f"{why_curve}: kept {start}")
+        p = p.replace(transition_curve=scaled)
         held["n"] = f"{why_curve}: kept {start}"
     else:
         held["transition_curve"] = f"{why_curve}: kept {start}"
         held["n"] = f"{why_curve}: kept {start}"
     if all(d.fit is None for d in decisions.values()) and tfit is None:
+        if unresolved:
+            raise IdentificationError(f"nothing to fit: no constant-velocity levels, and {unresolved} (a finer "
+                                      f"position sensor, or --params to start from)")
         if unbounded:
             raise IdentificationError(f"nothing to fit: no constant-velocity levels, and {why_curve} (the segments "
                                       f"ran to their limit): more presliding cycles, or --params to start from")

@@ -8,6 +8,7 @@ level's *mean* (sample variance / number of samples), so that the covariance
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -76,10 +77,12 @@ def fit_side(levels: Levels, sign: int, start: dict | None = None, hold: dict | 
     a = np.abs(v)
     # starting point: σ2 from the fastest levels, F_c from the middle, F_s from the slowest
     hi = a >= np.quantile(a, 0.7)
-    # the least-squares slope about the means (np.polyfit warns "poorly conditioned" on levels a
-    # few parts in 10⁴ apart, as repeated visits of one speed are)
-    dv = v[hi] - v[hi].mean()
-    s2 = max(0.0, float(dv @ (F[hi] - F[hi].mean()) / (dv @ dv))) if hi.sum() >= 2 and np.ptp(v[hi]) > 0 else 0.0
+    with warnings.catch_warnings():
+        # levels a few parts in 10⁴ apart (repeated visits of one speed) make polyfit warn "poorly
+        # conditioned"; its truncated solution is a start, and a sound one, so the warning is not
+        # the user's (the exact slope about the means starts elsewhere and moved later refits)
+        warnings.simplefilter("ignore", getattr(np, "exceptions", np).RankWarning)
+        s2 = max(0.0, np.polyfit(v[hi], F[hi], 1)[0]) if hi.sum() >= 2 and np.ptp(v[hi]) > 0 else 0.0
     Fc0 = np.min(np.abs(F - s2 * v)) * sign
     Fs0 = (F[0] - s2 * v[0])
     if abs(Fs0) <= abs(Fc0):

@@ -220,10 +220,10 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
     if rec.position is None:
         raise IdentificationError(f"{rec.source}: needs a position column to find velocity levels and presliding")
     if rec.force is None and rec.friction is None:
+        why = rec.unrecognised("force", "friction")
         raise IdentificationError(f"{rec.source}: needs a force (applied force/torque) or a friction column"
-                                  + (f"; none of {', '.join(rec.ignored)} was recognised as one: name it with "
-                                     f"--columns force=<column> (applied) or friction=<column> (measured)"
-                                     if rec.ignored else ""))
+                                  + (f"; {why}: name it with --columns force=<column> (applied) or "
+                                     f"friction=<column> (measured)" if why else ""))
     th = Thresholds()
     t, x = rec.time, rec.position
     dts = np.diff(t)

@@ -626,5 +626,6 @@ def test_rests_are_unresolved_where_the_friction_swings_while_the_position_stand
     # while the position stands
     hidden = unresolved_rest(_rests_and_strokes(6e4, 4e-4))
     assert hidden.unresolved and hidden.ratio == pytest.approx(1.2, rel=0.1)
-    # the samples not compared are rests only: none of the sliding
-    assert not np.any(hidden.mask[10_000:] & (np.abs(_rests_and_strokes(6e4, 4e-4).velocity[10_000:]) > 0.01))
+    # the joint stood for the first 20 s (10,000 samples): nearly all of them are the rests left
+    # out, and next to nothing of the 20 s of sliding after them
+    assert hidden.mask[:10_000].mean() > 0.95 and hidden.mask[10_000:].mean() < 0.02

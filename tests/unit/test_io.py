@@ -247,7 +247,10 @@ def test_windows_1252_after_the_sniffed_head(tmp_path):
 @pytest.mark.parametrize("header, signals", [
     # a motor torque and a measured friction named as loggers name them, with the unit as a last word
     ("t [s],q [rad],tau_motor [N*m]", {"time": 1.0, "position": 1.0, "force": 1.0}),
-    ("t_ms,x_mm,F_friction [mN],Fn_load [N]", {"time": 1e-3, "position": 1e-3, "friction": 1e-3, "normal_load": 1.0}),
+    # a known name followed by its unit as a word: normal_kN is the normal load in kN
+    ("t_ms,x_mm,F_friction [mN],normal_kN", {"time": 1e-3, "position": 1e-3, "friction": 1e-3, "normal_load": 1e3}),
+    # a force word beside a position word: taken as the force once the position has a column
+    ("t,q,F_x [N]", {"time": 1.0, "position": 1.0, "force": 1.0}),
     ("time,joint_position [deg],torque_cmd [N*m]", {"time": 1.0, "position": np.pi / 180, "force": 1.0}),
 ])
 def test_columns_are_recognised_by_the_words_of_their_names(tmp_path, header, signals):
@@ -281,5 +284,21 @@ def test_two_columns_that_could_each_be_a_signal_are_not_guessed_between(tmp_pat
 def test_a_unit_of_another_kind_is_refused_naming_the_column(tmp_path):
     path = tmp_path / "kind.csv"
     path.write_text("time [s],position [s],force [N]\n" + "".join(f"{i},{i},{i}\n" for i in range(20)))
-    with pytest.raises(DataError, match=r"column 'position \[s\]' was taken as position, but 's' is a unit of s"):
+    with pytest.raises(DataError, match=r"column 'position \[s\]' was taken as position, but its unit 's' is a "
+                                        r"time unit; position needs m or rad"):
         load_recording(path)
+
+
+def test_columns_a_logger_adds_are_not_taken_by_their_words(tmp_path):
+    # a file that loaded before the names' words were read loads the same: a controller's friction
+    # model, a reference, a current, a load cell, a motor temperature with blanks and a sample
+    # index are none of the signals
+    head = ("time,position,torque,friction_model,friction_comp,x_ref,q_cmd,force_ref,motor_current,motor_speed,"
+            "load_cell,temperature_motor,status,index,sample")
+    rows = "".join(f"{i},{i},{i}," + ",".join("" if k == 9 and i % 3 else str(i) for k in range(12)) + "\n"
+                   for i in range(30))
+    path = tmp_path / "logger.csv"
+    path.write_text(head + "\n" + rows)
+    rec = load_recording(path)
+    assert rec.columns == {"time": "time", "position": "position", "force": "torque"}
+    assert rec.friction is None and rec.velocity is None and rec.normal_load is None and rec.temperature is None
