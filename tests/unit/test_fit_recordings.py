@@ -158,6 +158,20 @@ def test_missing_force_column_is_one_line_naming_the_file(tmp_path):
     assert "\n" not in str(e.value)
 
 
+@pytest.mark.parametrize("extra, says", [
+    ("motor_current", r"none of motor_current was recognised as one: name it with --columns force=<column>"),
+    ("tau_a [N*m],tau_b [N*m]", r"tau_a \[N\*m\], tau_b \[N\*m\] could each be force: name it with --columns"),
+])
+def test_a_force_column_not_taken_is_named_with_how_to_name_it(tmp_path, extra, says):
+    path = tmp_path / "unnamed.csv"
+    k = extra.count(",") + 1
+    path.write_text(f"time,position,{extra}\n" + "".join(f"{i * 1e-3},{np.sin(i / 50)}" + ",1" * k + "\n"
+                                                          for i in range(500)))
+    with pytest.raises(IdentificationError, match=says) as e:
+        fit_recordings([load_recording(path)], refine=False)
+    assert "\n" not in str(e.value)
+
+
 @pytest.mark.parametrize("n", ["0", "nan", "-3", "inf"])
 def test_fit_refuses_bad_n(n, capsys):
     from leuven_friction.app.cli import main
