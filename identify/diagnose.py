@@ -354,9 +354,7 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     longest = averaging_limit(t, path, min_exc)
     L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t), longest)
     model_friction = simulate_displacement(params, t, path).friction_force
-    # the inertia is read at the shortest window, whatever the file's inertia would ask for (a
-    # file's I many times the machine's asked for a window too long to read I in)
-    est = inertia_from_force(f, vel, t, averaging_length(0.0, f_sd, v_noise, dt, w, len(t), longest), v_rest)
+    est = inertia_from_force(f, vel, t, L, v_rest)
     if est is not None and est.stderr < 0.25 * est.value and abs(est.value - inertia) > 3 * est.stderr:
         # a model-free regression can be misled (anything in the friction that follows the
         # acceleration enters I): the recording's value is used only if the model as given then
