@@ -356,11 +356,11 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     model_friction = simulate_displacement(params, t, path).friction_force
     est = inertia_from_force(f, vel, t, L, v_rest)
     L0 = averaging_length(0.0, f_sd, v_noise, dt, w, len(t), longest)
-    if (est is None or est.stderr >= 0.25 * est.value) and L0 < L:
+    if (est is None or not est.usable) and L0 < L:
         # nothing usable at the L the file's inertia asks for (a held inertia several times the
         # machine's asks for a window too long to read I in): read at the shortest window
         est = inertia_from_force(f, vel, t, L0, v_rest)
-    if est is not None and est.stderr < 0.25 * est.value and abs(est.value - inertia) > 3 * est.stderr:
+    if est is not None and est.usable and abs(est.value - inertia) > 3 * est.stderr:
         # a model-free regression can be misled (anything in the friction that follows the
         # acceleration enters I): the recording's value is used only if the model as given then
         # agrees with the data better
@@ -422,6 +422,11 @@ JACKKNIFE_BLOCKS = 10
 class InertiaEstimate:
     value: float
     stderr: float
+
+    @property
+    def usable(self) -> bool:
+        """σ under a quarter of the value: precise enough to take friction from the force with."""
+        return self.stderr < 0.25 * self.value
 
 
 def inertia_from_force(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float) -> InertiaEstimate | None:
