@@ -170,8 +170,12 @@ def _split_header(name: str) -> tuple[str, str | None]:
     return key, unit
 
 
+NO_COLUMN = "-"  # ``--columns velocity=-``: take no column for this signal, not even a recognised one
+
+
 def parse_column_mapping(spec: str | None) -> dict:
-    """'time=t,position=q,force=tau' -> {'time': 't', 'position': 'q', 'force': 'tau'}."""
+    """'time=t,position=q,force=tau' -> {'time': 't', 'position': 'q', 'force': 'tau'};
+    ``velocity=-`` -> {'velocity': None}: that signal is taken from no column."""
     if not spec:
         return {}
     out = {}
@@ -181,7 +185,7 @@ def parse_column_mapping(spec: str | None) -> dict:
         k, v = (s.strip() for s in part.split("=", 1))
         if k not in SIGNALS:
             raise DataError(f"--columns: unknown signal {k!r}; known: {', '.join(SIGNALS)}")
-        out[k] = v
+        out[k] = None if v == NO_COLUMN else v
     return out
 
 
@@ -203,9 +207,12 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                    require: tuple = ("time",), name: str | None = None) -> Recording:
     """Read a recording from a path, or from bytes/str content (``name`` labels messages).
 
-    ``columns`` maps signals to column names; ``units`` maps signals to unit names and
+    ``columns`` maps signals to column names, or to None for a signal to take from no column
+    (a recognised name is then left alone); ``units`` maps signals to unit names and
     overrides what the header says. Columns not recognised are ignored (listed in ``notes``).
     """
+    refused = {sig for sig, col in (columns or {}).items() if col is None}
+    columns = {sig: col for sig, col in (columns or {}).items() if col is not None}
     encoding = "utf-8-sig"
     if isinstance(source, (bytes, bytearray)):
         from .io import decode_text
@@ -246,7 +253,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             mapping[sig] = same[0]
     taken = set(mapping.values())
     for sig in SIGNALS:
-        if sig in mapping:
+        if sig in mapping or sig in refused:
             continue
         for col, (key, _) in headers.items():
             if col not in taken and key in ALIASES[sig]:
@@ -260,7 +267,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         if col in taken:
             continue
         for sig, unit_word in recognise(key, unit):
-            if sig not in mapping:
+            if sig not in mapping and sig not in refused:
                 by_words.setdefault(sig, []).append(col)
                 if unit is None and unit_word is not None:
                     headers[col] = (key, unit_word)

@@ -116,8 +116,8 @@ class DataTab:
 
         @self.gui_remap.on_click
         def _(_) -> None:
-            with ctx.lock:
-                ctx.session.mapping = {s: h.value for s, h in self.gui_map.items() if h.value != NONE}
+            with ctx.lock:  # "(none)" is a choice too: that signal from no column, not the one recognised
+                ctx.session.mapping = {s: (None if h.value == NONE else h.value) for s, h in self.gui_map.items()}
             self.job.submit("load", True)
 
         @self.gui_flip.on_update

@@ -323,3 +323,28 @@ def test_plot_saved_as_png_and_csv(chromium, server, tmp_path):
     dl.value.save_as(str(png))
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
     page.close()
+
+
+def test_a_recognised_column_set_to_none_stays_none(chromium, tmp_path):
+    # a tachometer the user does not trust: "(none)" for velocity is a choice, not a blank the
+    # loader fills again with the column it recognises
+    t = np.arange(3000) * 2e-3
+    q = 0.2 * np.sin(2 * np.pi * 0.5 * t)
+    v = np.gradient(q, t)
+    tau = 3.0 * np.tanh(v / 0.01) + 0.5 * v + 0.01 * np.random.default_rng(0).normal(size=t.size)
+    path = tmp_path / "joint_tacho.csv"
+    path.write_text("time [s],position [rad],velocity [rad/s],torque [N*m]\n"
+                    + "".join(f"{a:.4f},{b:.8f},{c:.6f},{d:.5f}\n" for a, b, c, d in zip(t, q, v, tau)))
+    with running_server() as (url, _):
+        page = open_app(chromium, url, 1280, 720)
+        upload_for(page, "Upload recording").set_input_files(str(path))
+        page.get_by_role("tab", name="Data").click()
+        wait_plot(page, RECORDING, None)
+        fid = page.locator("label", has_text=re.compile(r"^velocity$")).first.get_attribute("for")
+        dropdown = page.locator(f'[id="{fid}"]')
+        assert dropdown.input_value() == "velocity [rad/s]"  # recognised by its name
+        choose(page, "velocity", "(none)")
+        page.get_by_role("button", name="Apply columns").click(timeout=120_000)  # (after the first fit)
+        wait_text(page, "ignored columns: velocity [rad/s]", 60)
+        assert dropdown.input_value() == "(none)"
+        page.close()

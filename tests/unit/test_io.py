@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from leuven_friction.identify.csvformat import rows_bytes
-from leuven_friction.identify.data import load_recording
+from leuven_friction.identify.data import load_recording, parse_column_mapping, velocity_of
 from leuven_friction.identify.errors import DataError
 from leuven_friction.identify.io import read_table_file, sniff, write_table
 
@@ -302,3 +302,24 @@ def test_columns_a_logger_adds_are_not_taken_by_their_words(tmp_path):
     rec = load_recording(path)
     assert rec.columns == {"time": "time", "position": "position", "force": "torque"}
     assert rec.friction is None and rec.velocity is None and rec.normal_load is None and rec.temperature is None
+
+
+def test_a_signal_can_be_taken_from_no_column(tmp_path):
+    # a tachometer column the user does not trust: velocity=- leaves it out, though its name is
+    # recognised, and the velocity is then differentiated from the position
+    path = tmp_path / "tacho.csv"
+    path.write_text("time [s],position [rad],velocity [rad/s],torque [N*m],normal [N]\n"
+                    + "".join(f"{0.01 * i},{np.sin(0.01 * i)},{7.0},{i},{5}\n" for i in range(50)))
+    assert parse_column_mapping("velocity=-,force=torque [N*m]") == {"velocity": None, "force": "torque [N*m]"}
+    rec = load_recording(path, columns=parse_column_mapping("velocity=-"))
+    assert rec.velocity is None and "velocity" not in rec.columns
+    assert rec.ignored == ["velocity [rad/s]"]
+    assert rec.columns == {"time": "time [s]", "position": "position [rad]", "force": "torque [N*m]",
+                           "normal_load": "normal [N]"}
+    np.testing.assert_allclose(velocity_of(rec)[5:-5], np.cos(0.01 * np.arange(50))[5:-5], atol=0.006)  # not 7
+    # a word-recognised name is left alone too, and a required signal taken from no column is refused
+    words = tmp_path / "words.csv"
+    words.write_text("t [s],q [rad],tau_motor [N*m]\n" + "".join(f"{i},{i},{i}\n" for i in range(20)))
+    assert load_recording(words, columns={"force": None}).force is None
+    with pytest.raises(DataError, match=r"words.csv: no column for time"):
+        load_recording(words, columns={"time": None})
