@@ -304,26 +304,81 @@ def settle_noise_floor(cmp_: Comparison, mask: np.ndarray) -> None:
                       f"position noise carries through the model's slope dF/dx (per regime below)")
 
 
-def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction") -> Comparison:
-    """Where to compare: in friction when the recording has a friction column or an applied
-    force (friction from eq. (8), averaged), in position (``space="position"``) only for an
-    applied force."""
-    if rec.position is None:
-        raise DataError(f"{rec.source}: diagnosis needs a position column")
+@dataclass(frozen=True)
+class MotionReading:
+    """The logged motion as the diagnosis reads it: the compared path (``compared_path``), its
+    smoothed slope against the actual times, that slope's noise, the speed below which the
+    contact counts as at rest, the back-travel a significant reversal needs, and a tachometer
+    (velocity, noise) where the file has one quieter than the slope."""
+
+    t: np.ndarray
+    x: np.ndarray
+    dt: float
+    compared: ComparedPath
+    velocity: np.ndarray
+    v_noise: float
+    v_rest: float
+    min_excursion: float
+    tachometer: tuple | None
+
+
+def motion_reading(rec: Recording) -> MotionReading:
     t = np.asarray(rec.time, dtype=np.float64)
     x = np.asarray(rec.position, dtype=np.float64)
     if len(t) < 50:
         raise DataError(f"{rec.source}: diagnosis needs at least 50 samples, got {len(t)}")
     dt = float(np.median(np.diff(t)))
     cp = compared_path(x, dt)
-    sdx, q, w, h, path = cp.sd, cp.step, cp.window, cp.h, cp.path
     # the sampling may change within a record (parts logged at different rates, gaps): the
     # slope is taken against the actual times, as the fit does
-    vel = local_slope(t, x, w, uniform=bool(np.ptp(np.diff(t)) <= 0.01 * dt))
-    v_noise = sdx * math.sqrt(12.0) / (w**1.5 * dt)
-    v_rest = 3.0 * max(v_noise, (q / (w * dt)) if q else 0.0)
+    vel = local_slope(t, x, cp.window, uniform=bool(np.ptp(np.diff(t)) <= 0.01 * dt))
+    v_noise = cp.sd * math.sqrt(12.0) / (cp.window**1.5 * dt)
+    v_rest = 3.0 * max(v_noise, (cp.step / (cp.window * dt)) if cp.step else 0.0)
+    tacho = None
+    if rec.velocity is not None:
+        vt = np.asarray(rec.velocity, dtype=np.float64)
+        # use the tachometer where it is quieter than the differentiated position
+        vt_noise = _mad_sd(np.diff(vt)) / math.sqrt(2)
+        if vt_noise < v_noise:
+            tacho = (vt, vt_noise)
+    return MotionReading(t, x, dt, cp, vel, v_noise, v_rest, 4.0 * max(cp.sd, cp.step), tacho)
+
+
+def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
+    """The inertia of eq. (8) that a recording of applied force and position says by itself
+    (``inertia_from_force`` at the shortest averaging, no inertia given), and in words why
+    there is none (no applied force, a measured friction, no steady sliding to read it in, the
+    two windows disagreeing)."""
+    if rec.force is None or rec.position is None:
+        return None, "not read: no applied force and position to read it from"
+    if rec.friction is not None:
+        return None, "not read: the friction is measured, eq. (8) is not needed"
+    m = motion_reading(rec)
+    vel, v_noise = m.tachometer or (m.velocity, m.v_noise)
+    f = np.asarray(rec.force, dtype=np.float64)
+    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
+    longest = averaging_limit(m.t, m.compared.path, m.min_excursion)
+    L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
+    est = inertia_from_force(f, vel, m.t, L0, m.v_rest)
+    if est is None:
+        return None, ("not read: the force regressed on the acceleration in steady sliding gives no consistent "
+                      "positive inertia (too little steady sliding, or two windows disagreeing)")
+    if not est.usable:
+        return est, f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to use (σ over a quarter of the value)"
+    return est, f"read as {est.value:.4g} ± {est.stderr:.2g} (eq. (8) averaged over {L0} samples)"
+
+
+def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction") -> Comparison:
+    """Where to compare: in friction when the recording has a friction column or an applied
+    force (friction from eq. (8), averaged), in position (``space="position"``) only for an
+    applied force."""
+    if rec.position is None:
+        raise DataError(f"{rec.source}: diagnosis needs a position column")
+    m = motion_reading(rec)
+    t, x, dt, vel, v_noise, v_rest, min_exc = m.t, m.x, m.dt, m.velocity, m.v_noise, m.v_rest, m.min_excursion
+    cp = m.compared
+    sdx, q, w, h, path = cp.sd, cp.step, cp.window, cp.h, cp.path
     notes = [f"position noise {sdx:.3g} (step {q:.3g}); path smoothed over {w} samples and wiggles below {2 * h:.3g} removed; |v| < {v_rest:.3g} counts as presliding"]
-    min_exc = 4.0 * max(sdx, q)
     if rec.friction is not None:
         meas = np.asarray(rec.friction, dtype=np.float64)
         cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, rec.force, 0.0, sdx, w, min_exc, v_rest,
@@ -340,13 +395,9 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     if rec.force is None:
         raise DataError(f"{rec.source}: diagnosis needs a friction column, or an applied force column")
     f = np.asarray(rec.force, dtype=np.float64)
-    if rec.velocity is not None:
-        vt = np.asarray(rec.velocity, dtype=np.float64)
-        # use the tachometer where it is quieter than the differentiated position
-        vt_noise = _mad_sd(np.diff(vt)) / math.sqrt(2)
-        if vt_noise < v_noise:
-            vel, v_noise = vt, vt_noise
-            notes.append("velocity from the velocity column (quieter than the smoothed position)")
+    if m.tachometer:
+        vel, v_noise = m.tachometer
+        notes.append("velocity from the velocity column (quieter than the smoothed position)")
     if space == "position":
         return _position_comparison(rec, params, t, x, f, vel, sdx, w, min_exc, v_rest, v_noise, path, notes)
     f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)

@@ -353,10 +353,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                                       f"ran to their limit): more presliding cycles, or --params to start from")
         raise IdentificationError("nothing to fit: the data hold neither constant-velocity levels nor presliding "
                                   "branches (force ramps with reversals, or reversals of a motion with measured friction)")
-    for k in ("sigma1", "inertia"):
-        held.setdefault(k, f"not estimated by this fit: kept {start}")
+    p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start)
+    held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
 
-    unc = {}
+    unc = {} if inertia_sd is None else {"inertia": inertia_sd}
     for side, dec in decisions.items():
         if dec.fit is not None:
             for k in NAMES:
@@ -405,6 +405,40 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     res.params = res.params.replace(uncertainty={**unc, **res.params.uncertainty} if res.refinement.get("done") else unc,
                                     provenance=prov, units=_units_of(recordings)).validate()
     return res
+
+
+def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: bool, held: dict, notes: list,
+                  start: str) -> tuple[FrictionParams, float | None]:
+    """Eq. (8)'s inertia I, read from the recordings that log an applied force
+    (``diagnose.recording_inertia``: the force regressed on the mean acceleration beside a free
+    steady curve while sliding steadily, no model entering). Written with its σ where it is
+    usable (σ under a quarter of the value; several recordings pooled by inverse variance) and
+    no parameter file was given: the built-in default is another machine's. A file's inertia
+    is kept (a value from the drawings is usually better than a regression on a log), and the
+    notes say what the recording reads. Held and named otherwise."""
+    from .diagnose import recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
+
+    reads = []
+    for r in recordings:
+        est, why = recording_inertia(r)
+        if r.force is not None and r.friction is None:
+            notes.append(f"{r.source}: inertia {why}")  # "inertia read as …" / "inertia not read: …"
+        if est is not None and est.usable:
+            reads.append(est)
+    if not reads:
+        held["inertia"] = f"not determined by the recordings (see the notes): kept {start}"
+        return p, None
+    w = np.array([1.0 / e.stderr**2 for e in reads])
+    value = float(np.sum(w * np.array([e.value for e in reads])) / np.sum(w))
+    sd = float(1.0 / math.sqrt(np.sum(w)))
+    if from_file:
+        off = abs(value - p.inertia) / sd
+        held["inertia"] = (f"kept from the starting parameter file ({p.inertia:.4g}); the recordings read "
+                           f"{value:.4g} ± {sd:.2g}" + (f", {off:.1f} σ from it" if off > 3 else ""))
+        return p, None
+    notes.append(f"inertia {value:.4g} ± {sd:.2g} read from the applied force (eq. (8)), replacing the built-in "
+                 f"default {p.inertia:.4g}")
+    return p.replace(inertia=value), sd
 
 
 def _held_value(params: FrictionParams, path: str) -> str:

@@ -219,29 +219,12 @@ def test_inertia_from_force_recovers_the_mass_of_a_controlled_plant():
     # Coulomb-plus-viscous law; integrated here with 20 substeps a sample (not the product's
     # simulator); S(v) is not given to the estimator (its free steady curve takes it up)
     from leuven_friction.identify.diagnose import inertia_from_force
+    from tests.unit.plants import velocity_loop
 
-    rng = np.random.default_rng(3)
-    I, dt, sub = 0.8, 2e-3, 20
-    S = lambda v: 2.0 * np.tanh(v / 1e-3) + 5.0 * v  # noqa: E731
-    levels = [0.05, -0.05, 0.2, -0.2, 0.6, -0.6] * 2
-    n_per = 1500
-    v_cmd = np.repeat(levels, n_per)
-    x = v = integ = 0.0
-    xs, vs, fs = [], [], []
-    for k, vc in enumerate(v_cmd):
-        noise = rng.normal(0, 0.01)  # a noisy tachometer makes the loop hunt
-        for _ in range(sub):  # the loop runs at the internal rate, the log decimates
-            e = vc - (v + noise)
-            integ += e * dt / sub
-            u = 40.0 * e + 400.0 * integ
-            v += (u - S(v)) / I * (dt / sub)
-            x += v * dt / sub
-        xs.append(x)
-        vs.append(v)
-        fs.append(u)
-    v = np.array(vs)
-    f = np.array(fs)
-    got = inertia_from_force(f, v, np.arange(len(v)) * dt, 5, 1e-3)
+    I, dt = 0.8, 2e-3
+    t, _, v, f = velocity_loop(I, lambda v: 2.0 * np.tanh(v / 1e-3) + 5.0 * v, [0.05, -0.05, 0.2, -0.2, 0.6, -0.6] * 2,
+                               1500, dt=dt, kp=40.0)
+    got = inertia_from_force(f, v, t, 5, 1e-3)
     assert got is not None
     I_hat, se = got.value, got.stderr
     # the force is logged once a sample, at the end of it, while the proportional term moves

@@ -97,7 +97,9 @@ def test_the_cli_says_where_held_and_simulated_values_come_from(tmp_path, capsys
     assert main(["fit", str(data), "--out", str(tmp_path / "p.yaml"), "--no-refine"]) == 0
     text = (tmp_path / "p.yaml").read_text()
     assert "np.float64" not in text and "Gaussian(sigma=" in text  # plain numbers in the YAML
-    assert "inertia = 5: not estimated by this fit: kept from the built-in default" in capsys.readouterr().out
+    out = capsys.readouterr().out  # a LuGre slide under a sine: no steady sliding to read the inertia in
+    assert "inertia = 5: not determined by the recordings (see the notes): kept from the built-in default" in out
+    assert "lugre_sine.csv: inertia not read: " in out
     # simulating this m, N recording without --params: the paper's joint, in rad and N·m
     assert main(["simulate", "--input", str(data), "--out", str(tmp_path / "s.csv")]) == 0
     err = capsys.readouterr().err

@@ -292,3 +292,37 @@ def test_presliding_shorter_than_an_encoder_step_holds_the_curve_and_still_fits_
                      ("sigma2", f["viscous"])):
             sd = res.params.uncertainty[f"stribeck.{side}.{k}"]
             assert abs(getattr(st, k) - t) < 3 * sd + 0.01 * abs(t), (side, k, getattr(st, k), t, sd)
+
+
+def _stage_csv(path, position_unit: str, scale: float, I: float = 0.8, kp: float = 40.0):
+    """A slide under a velocity loop (integrated in tests/unit/plants.py, not by the product),
+    its position from a 1 µm scale, written with the position in ``position_unit``."""
+    from tests.unit.plants import velocity_loop
+
+    t, x, _, f = velocity_loop(I, lambda v: 2.0 * np.tanh(v / 1e-3) + 5.0 * v,
+                               [0.05, -0.05, 0.2, -0.2, 0.6, -0.6, 0.1, -0.1] * 2, 1500, kp=kp)
+    q = np.round(x / 1e-6) * 1e-6
+    path.write_text(f"time [s],position [{position_unit}],force [N]\n"
+                    + "".join(f"{a:.4f},{b * scale:.10g},{c:.6g}\n" for a, b, c in zip(t, q, f)))
+    return path
+
+
+def test_the_inertia_is_read_from_the_applied_force_and_written_with_its_sd(tmp_path):
+    # eq. (8)'s inertia from the recording alone, without a parameter file: within 3 σ of the
+    # slide's (less the kp·dt/2 by which a log of the controller's force at the sample instant
+    # reads it low), σ under a quarter of it, and not listed as held
+    I, kp, dt = 0.8, 40.0, 2e-3
+    res = fit_recordings([load_recording(_stage_csv(tmp_path / "slide_m.csv", "m", 1.0, I, kp))], refine=False)
+    got, sd = res.params.inertia, res.params.uncertainty["inertia"]
+    assert "inertia" not in res.held
+    assert abs(got - (I - kp * dt / 2)) < 3 * sd and sd < 0.25 * got, (got, sd)
+    # the same slide logged in mm: the same inertia in SI
+    res_mm = fit_recordings([load_recording(_stage_csv(tmp_path / "slide_mm.csv", "mm", 1e3, I, kp))], refine=False)
+    assert res_mm.params.inertia == pytest.approx(got, rel=1e-6)
+    # a parameter file's inertia is kept, and the notes say what the recording reads
+    from leuven_friction.model import default_params
+
+    base = default_params().replace(inertia=3.0)
+    kept = fit_recordings([load_recording(tmp_path / "slide_m.csv")], base=base, refine=False)
+    assert kept.params.inertia == 3.0 and "inertia" not in kept.params.uncertainty
+    assert kept.held["inertia"].startswith("kept from the starting parameter file (3); the recordings read 0.7")
