@@ -315,9 +315,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                      f"an estimate)")
         tfit = None
         n_br = 0
-        unbounded = True
+        unbounded = float(z[-1])  # how far in z the furthest branch reached: a scale for the held curve
     else:
-        unbounded = False
+        unbounded = 0.0
     why_curve = ("the branches do not bound F_d" if unbounded else
                  "presliding shorter than the position sensor resolves" if unresolved else "no presliding data")
     if tfit is not None:
@@ -329,16 +329,18 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         notes.extend(tfit.notes)
         if not fit_n:
             held["n"] = f"fixed at {n:g} (the paper's choice; --fit-n estimates it)"
-    elif base is None and unresolved:
+    elif base is None and (unresolved or unbounded):
         # no file of this machine's to hold from, but branches that show how far presliding
         # reaches: the paper's curve, brought to this machine's scale
-        # (branches that never left one encoder step reach 0: the range is then of the step's order)
-        reach = max(unresolved.reach, unresolved.resolution)
+        # (branches that never left one encoder step reach 0: the range is then of the step's order;
+        # branches that do not bound F_d still reach somewhere in z)
+        reach = max(unresolved.reach, unresolved.resolution) if unresolved else unbounded
         scaled = held_curve_for(p.transition_curve, p.stribeck, reach)
         held["transition_curve"] = (
             f"{why_curve}: the paper's KUKA IR 361 curve, its F_d scaled to this fit's F_s⁺ − F_s⁻ and its last "
-            f"knot to the presliding reach seen, or the sensor's resolution where larger ({reach:.3g}) (give --params "
-            f"with this machine's curve)" if scaled is not p.transition_curve else f"{why_curve}: kept {start}")
+            f"knot to the presliding reach seen" + (", or the sensor's resolution where larger" if unresolved else "")
+            + f" ({reach:.3g}) (give --params with this machine's curve)"
+            if scaled is not p.transition_curve else f"{why_curve}: kept {start}")
         p = p.replace(transition_curve=scaled)
         held["n"] = f"{why_curve}: kept {start}"
     else:

@@ -8,6 +8,7 @@ import io
 import math
 
 import numpy as np
+import pytest
 
 import leuven_friction.identify.fit as fit_mod
 from leuven_friction.identify.data import load_recording
@@ -69,6 +70,14 @@ def test_with_the_slid_branch_kept_the_curve_is_not_bounded_and_is_held(monkeypa
     assert "the branches do not bound F_d" in res.held["transition_curve"], res.held
     assert not any(k.startswith("transition_curve") for k in res.params.uncertainty)
     assert any("ran to their limit" in m for m in res.notes)
+    # held at this slide's scale, not the KUKA joint's 100 N·m over 5.2e-4: F_d's top at the
+    # outer loop's span, its last knot where the branches reached — of the order of the
+    # bristles' own reversal, 2·F_s/σ0 = 5 µm
+    curve, st = res.params.transition_curve, res.params.stribeck
+    assert curve.F[-1] == pytest.approx(st.positive.Fs - st.negative.Fs, rel=1e-9)
+    assert 0.5 * 2 * FS < curve.F[-1] < 2 * 2 * FS
+    assert 0.5 * 2 * FS / 2e5 < curve.z[-1] < 4 * 2 * FS / 2e5, curve.z
+    assert "scaled to this fit's F_s⁺ − F_s⁻" in res.held["transition_curve"]
 
 
 def _branch(span):
