@@ -107,26 +107,32 @@ def check_n(n) -> float:
     return x
 
 
+def branch_z(b, n: float) -> np.ndarray:
+    """The state z along a presliding branch: eq. (5) at presliding speeds gives dz = (1 −
+    (ΔF/D)^n)·dx, so near D the displacement runs ahead of z."""
+    x = b.displacement - (b.displacement[0] if b.driven == "force" else 0.0)
+    w = 1.0 - np.clip(b.force / b.D, 0.0, 1.0) ** n
+    return np.maximum.accumulate(np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(x))]))
+
+
+def observed_branches(datasets) -> list:
+    """Branches that start at a reversal in the record: only they tell z (one continued on the
+    outer loop starts at an unknown z)."""
+    return [b for d in datasets for b in d.branches if b.observed and len(b.force) > 1]
+
+
 def knots_from_data(datasets, n: float = 7.0) -> np.ndarray:
     """Abscissas where the branch that reaches furthest in z has gone KNOT_FRACTIONS of its
     force change (so every segment holds data, densest where F_d is steepest), dropping any
     closer to its neighbour than two position-noise σ (knots the data cannot tell apart).
     Refuses if fewer than one knot remains."""
-    # z, not the displacement: eq. (5) at presliding speeds gives dz = (1 - (ΔF/D)^n)·dx, so
-    # near D the displacement runs ahead of z; a top knot at the largest displacement would
-    # lie beyond every datum's z and F_d there would be an extrapolation. Only branches that
-    # start at a reversal in the record tell z (one continued on the outer loop starts at an
-    # unknown z).
-    def z_of(b):
-        x = b.displacement - (b.displacement[0] if b.driven == "force" else 0.0)
-        w = 1.0 - np.clip(b.force / b.D, 0.0, 1.0) ** n
-        return np.maximum.accumulate(np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(x))]))
-
-    observed = [b for d in datasets for b in d.branches if b.observed and len(b.force) > 1]
+    # z, not the displacement (``branch_z``): a top knot at the largest displacement would lie
+    # beyond every datum's z and F_d there would be an extrapolation
+    observed = observed_branches(datasets)
     if not observed:
         raise IdentificationError("no presliding branch starts at a reversal in the record: the abscissas of the "
                                   "transition curve cannot be placed (give them with knots=...)")
-    zs = [z_of(b) for b in observed]
+    zs = [branch_z(b, n) for b in observed]
     k = int(np.argmax([zb[-1] for zb in zs]))
     zb, fb = zs[k], np.maximum.accumulate(observed[k].force)
     reach = float(zb[-1])
@@ -315,7 +321,18 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                      f"an estimate)")
         tfit = None
         n_br = 0
-        unbounded = float(z[-1])  # how far in z the furthest branch reached: a scale for the held curve
+        reaches = np.array([branch_z(b, n)[-1] for b in observed_branches(datasets)])
+        resolution = min(d.x_noise for d in datasets)
+        if knots is None and len(reaches) and np.median(reaches) < 2.0 * resolution:
+            # most branches never left two encoder steps (or noise σ): the few that did went
+            # further than presliding reaches (they slid, under a controller's push) and bound
+            # nothing; the presliding is not resolved
+            unresolved = UnresolvedCurve(float(np.median(reaches)), resolution)
+            notes.append(f"transition curve: half the branches or more reach {unresolved.reach:.3g} at most: "
+                         f"{unresolved}")
+            unbounded = 0.0
+        else:
+            unbounded = float(z[-1])  # how far in z the furthest branch reached: a scale for the held curve
     else:
         unbounded = 0.0
     why_curve = ("the branches do not bound F_d" if unbounded else

@@ -182,6 +182,25 @@ def _trouble(fit: SideFit, names) -> list:
     return bad
 
 
+DELTA_RANGE = (0.5, 2.0)  # δ of eq. (7) as contacts show it (Table I: 0.5 and 0.9; a Gaussian Stribeck curve: 2)
+
+
+def with_delta_spread(fit: SideFit, levels: Levels, sign: int) -> SideFit:
+    """A fit with δ held, its σ widened by how far each estimate moves when δ is held
+    anywhere in ``DELTA_RANGE`` instead (half the spread, in quadrature): δ is held because
+    the levels do not determine it, so an error bar conditional on the one value chosen would
+    claim what the data do not say. (On an independent robot joint whose slow holds stick and
+    slip, F_s came out 13.1 ± 0.33 with δ held at 1 for a contact's 9.98.)"""
+    others = [fit_side(levels, sign, hold={"delta": d}) for d in DELTA_RANGE]
+    stderr = dict(fit.stderr)
+    for k in ("Fs", "Fc", "vs", "sigma2"):
+        vals = [fit.values[k]] + [f.values[k] for f in others]
+        stderr[k] = float(np.hypot(fit.stderr[k], 0.5 * (max(vals) - min(vals))))
+    notes = fit.notes + [f"σ of Fs, Fc, vs and σ2 include how far they move with δ held anywhere in "
+                         f"{DELTA_RANGE[0]:g}–{DELTA_RANGE[1]:g} (δ is not determined by the levels)"]
+    return SideFit(fit.values, stderr, fit.correlation, fit.chi2, fit.dof, fit.names, notes)
+
+
 def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> SideDecision:
     """Fit what the levels of one side determine, hold the rest with a stated reason.
 
@@ -204,10 +223,20 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
         if below >= 2 and not bad:
             return SideDecision(fit, {}, "Stribeck + viscous")
         if below >= 2 and bad == ["delta"]:
-            fit2 = fit_side(levels, sign, hold={"delta": delta_hold})
-            if not _trouble(fit2, ("Fs", "Fc", "vs", "sigma2")):
-                return SideDecision(fit2, {"delta": f"not determined by the levels (σ > half the value); held at {delta_hold:g}"},
-                                    "Stribeck + viscous (δ held)")
+            fit2 = with_delta_spread(fit_side(levels, sign, hold={"delta": delta_hold}), levels, sign)
+            bad2 = _trouble(fit2, ("Fs", "Fc", "vs", "sigma2"))
+            held = {"delta": f"not determined by the levels (σ > half the value); held at {delta_hold:g}"}
+            if not bad2:
+                return SideDecision(fit2, held, "Stribeck + viscous (δ held)")
+            if set(bad2) <= {"Fs", "vs"}:
+                # the levels show a Stribeck rise (δ alone was undetermined) but not its height
+                # and width once δ may be anything in its range: those are held where the fit
+                # with δ held put them — the curve still passes through the levels, where
+                # Coulomb + viscous would bend F_c and σ2 to reach the slowest ones
+                for k in bad2:
+                    held[k] = (f"not determined by the levels (σ {fit2.stderr[k]:.2g} with δ anywhere in "
+                               f"{DELTA_RANGE[0]:g}–{DELTA_RANGE[1]:g}): held at the fit's value with δ = {delta_hold:g}")
+                return SideDecision(fit2, held, f"Stribeck + viscous (δ, {', '.join(bad2)} held)")
         why = (f"only {below} level(s) below the Stribeck velocity" if below < 2
                else f"{', '.join(bad)} not determined by the levels (σ > half the value, a bound or a negative variance)")
     else:

@@ -320,7 +320,8 @@ def _batch_var_of_mean(a, batches=8):
 def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) -> Levels:
     """Runs where |v| > v_floor and v stays within rel_tol·|v| + 3·v_noise of itself over a
     window; the first ``settle_fraction`` of each run is dropped (the approach to sliding),
-    and a run whose friction still trends (halves differ by > 4σ) is not a level. Level
+    and a run whose friction still trends (halves differ by > 4σ), or opposes its velocity,
+    is not a level. Level
     velocity = travel / time over the kept part (exact on quantised positions); variance of
     the mean friction from batch means (the noise is not white under feedback control)."""
     th, rec = prep.th, prep.rec
@@ -351,6 +352,10 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
             if vel * med <= 0 or abs(x[a + e0 - 1] - x[a + s0]) < th.min_travel:
                 continue
             f = F[s:e]
+            if np.mean(f) * vel <= 0:
+                # sliding dissipates: S(v) has the sign of v. A slow creep whose force opposes it
+                # is the presliding spring giving back (a robot joint's torque ramps), not a level
+                continue
             h = len(f) // 2
             se = np.sqrt(_batch_var_of_mean(f[:h], 4) + _batch_var_of_mean(f[h:], 4))
             if abs(np.mean(f[:h]) - np.mean(f[h:])) > 4 * se:
@@ -359,7 +364,32 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
             out[1].append(float(np.mean(f)))
             out[2].append(_batch_var_of_mean(f))
             out[3].append(e - s)
-    return Levels(*(np.array(o, dtype=float) for o in out))
+    return sliding_only(Levels(*(np.array(o, dtype=float) for o in out)))
+
+
+CREEP_FRICTION = 0.6  # creep holds less than this fraction of its direction's median level friction …
+CREEP_TRAVEL = 0.01  # … and travels less than this fraction of the median level's travel
+
+
+def sliding_only(levels: Levels) -> Levels:
+    """Leave out runs of steady velocity that are the contact creeping in presliding, not
+    points of S(v): a run whose friction is under 60 % of the median of its direction's levels
+    (at least three; sliding needs about F_c) and whose travel (speed × samples) is under 1 %
+    of theirs (a sweep's slowest level travels about 5 % of its median one; a friction
+    following a load or a temperature moves the first measure, not the second). Such runs —
+    a robot joint's torque held between presliding ramps, creeping at 8e-5 to 2.4e-4 rad/s
+    with 0.5 to 2.7 N·m beside levels of 5 to 16 N·m — set the speed that ends presliding
+    branches, and none were found."""
+    keep = np.ones(len(levels.velocity), dtype=bool)
+    travel = np.abs(levels.velocity) * levels.count
+    for sign in (1.0, -1.0):
+        m = levels.velocity * sign > 0
+        if m.sum() >= 3:
+            keep[m] = ((np.abs(levels.friction[m]) >= CREEP_FRICTION * np.median(np.abs(levels.friction[m])))
+                       | (travel[m] >= CREEP_TRAVEL * np.median(travel[m])))
+    if keep.all():
+        return levels
+    return Levels(*(a[keep] for a in (levels.velocity, levels.friction, levels.variance, levels.count)))
 
 
 @njit(cache=True)

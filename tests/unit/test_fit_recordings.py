@@ -269,13 +269,17 @@ def test_a_load_varying_through_the_session_is_fitted_over_all_loads(kind):
         assert 0.9 * np.min(scale) * Fc_true < Fc_fit < 1.1 * np.max(scale) * Fc_true
 
 
-def test_presliding_shorter_than_an_encoder_step_holds_the_curve_and_still_fits_sv():
+@pytest.mark.parametrize("seed", [2, 1])
+def test_presliding_shorter_than_an_encoder_step_holds_the_curve_and_still_fits_sv(seed):
     # another generator (synth/elsewhere.py: GMS elements, a PID at 500 Hz, an 18-bit encoder of
     # 2.4e-5 rad against a presliding range of about 4e-5 rad, a motor torque named tau_motor):
-    # the transition curve cannot be resolved, so it is held and said so; S(v) is estimated
+    # the transition curve cannot be resolved, so it is held and said so; S(v) is estimated.
+    # On seed 1 four of ten branches moved by 1e-4 to 7e-3 rad under the controller's push
+    # (they slid) and the likelihood ran to its limit: most branches never left an encoder step,
+    # and that, not how far the few went, says the presliding is not resolved
     from synth.elsewhere import make
 
-    df, truth = make("robot_joint", 2, "none")
+    df, truth = make("robot_joint", seed, "none")
     res = fit_recordings([_rec(df, "joint.csv")], refine=False)
     assert "sensor resolves" in res.held["transition_curve"]
     assert res.transition_fit is None and not any(k.startswith("transition_curve") for k in res.params.uncertainty)
@@ -285,11 +289,17 @@ def test_presliding_shorter_than_an_encoder_step_holds_the_curve_and_still_fits_
     curve = res.params.transition_curve
     assert curve.F[-1] == pytest.approx(f["Fs_pos"] + f["Fs_neg"], rel=0.02)
     step = 2 * np.pi / 2**18
-    assert step <= curve.z[-1] <= 4 * step, curve.z
+    assert 0.999 * step <= curve.z[-1] <= 4 * step, curve.z  # (the step as the data show it, to rounding)
     for side, sign, tag in (("positive", 1, "pos"), ("negative", -1, "neg")):
         st = getattr(res.params.stribeck, side)
+        # what the levels determine, within its stated σ; F_c and σ2 always (on seed 1 the slow
+        # holds stick and slip, so no level lies below 0.73 v_s and F_s, v_s are held, said so)
+        assert not {f"stribeck.{side}.Fc", f"stribeck.{side}.sigma2"} & set(res.held)
         for k, t in (("Fs", sign * f[f"Fs_{tag}"]), ("Fc", sign * f[f"Fc_{tag}"]), ("vs", sign * f["vs"]),
                      ("sigma2", f["viscous"])):
+            if f"stribeck.{side}.{k}" in res.held:
+                assert f"stribeck.{side}.{k}" not in res.params.uncertainty
+                continue
             sd = res.params.uncertainty[f"stribeck.{side}.{k}"]
             assert abs(getattr(st, k) - t) < 3 * sd + 0.01 * abs(t), (side, k, getattr(st, k), t, sd)
 
@@ -326,3 +336,35 @@ def test_the_inertia_is_read_from_the_applied_force_and_written_with_its_sd(tmp_
     kept = fit_recordings([load_recording(tmp_path / "slide_m.csv")], base=base, refine=False)
     assert kept.params.inertia == 3.0 and "inertia" not in kept.params.uncertainty
     assert kept.held["inertia"].startswith("kept from the starting parameter file (3); the recordings read 0.7")
+
+
+def test_creep_between_presliding_ramps_is_not_a_level():
+    # sliding needs about F_c and travels far; a contact creeping at a force held between
+    # presliding ramps does neither, whatever the scale — and a level slowed by a falling load
+    # still counts
+    from leuven_friction.identify.markov import Levels
+    from leuven_friction.identify.segment import sliding_only
+
+    v = np.array([2e-4, 5e-3, 1e-2, 2e-2, 5e-2, 0.1, -5e-3, -1e-2, -2e-2])
+    F = np.array([1.5, 5.1, 5.0, 5.2, 5.6, 6.0, -5.0, -1.6, -5.1])  # -1.6: the load fell to a third
+    n = np.array([60, 900, 800, 700, 600, 500, 900, 800, 700], dtype=float)
+    for scale in (1.0, 1e-3):  # the same in other units: N and mm/s, or kN and m/s
+        kept = sliding_only(Levels(v * scale, F, np.full(9, 1e-4), n))
+        np.testing.assert_array_equal(kept.velocity, np.delete(v, 0) * scale)
+
+
+def test_presliding_ramps_of_a_robot_joint_give_a_transition_curve():
+    # the generator's robot joint (Maxwell-slip elements, synth/hidden.py) holds its torque
+    # between presliding ramps and creeps at 1.4e-4 rad/s with the torque opposing the motion:
+    # taken as the slowest level it ended every branch at 5e-5 rad/s, and the fit held the
+    # paper's curve. Now the curve is estimated, within 35 % of the generator's own curve
+    # (through its elements' break-away points) over the first 60 % of its range
+    from synth.hidden import SUITE_RATE, make_case, to_recording
+
+    df, truth, _ = make_case("robot_joint", 1003, ("time_drift",), rate=SUITE_RATE["robot_joint"])
+    res = fit_recordings([to_recording(df, "rj1003.csv")], refine=False)
+    assert "transition_curve" not in res.held
+    curve = res.params.transition_curve
+    z = np.asarray(curve.z)
+    inner = z <= 0.6 * z[-1]
+    np.testing.assert_allclose(np.asarray(curve.F)[inner][1:], truth.transition_curve(z[inner])[1:], rtol=0.35)
