@@ -514,6 +514,9 @@ def fit_report(res: FitResult) -> str:
             err = f" ± {unc.get(f'transition_curve.F.{i}', float('nan')):.2g}" if i else "   (fixed)"
             lines.append(f"    {z:>12.4g} {F:>12.5g}{err}")
         lines.append(f"    n = {res.params.n:g}" + (f" ± {unc['n']:.2g}" if "n" in unc else " (held)"))
+    if "inertia" in unc:
+        lines.append("[[Inertia, eq. (8) — from the applied force]]")
+        lines.append(f"    I = {res.params.inertia:.4g} ± {unc['inertia']:.2g} {spec_of(res.params, 'inertia').unit}")
     if res.refinement:
         lines.append("[[Output-error refinement]]")
         rf = res.refinement

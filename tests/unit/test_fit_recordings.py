@@ -326,6 +326,7 @@ def test_the_inertia_is_read_from_the_applied_force_and_written_with_its_sd(tmp_
     got, sd = res.params.inertia, res.params.uncertainty["inertia"]
     assert "inertia" not in res.held
     assert abs(got - (I - kp * dt / 2)) < 3 * sd and sd < 0.25 * got, (got, sd)
+    assert f"I = {got:.4g} ± {sd:.2g} N·s²/m" in res.report()  # an estimate, printed as one
     # the same slide logged in mm: the same inertia in SI
     res_mm = fit_recordings([load_recording(_stage_csv(tmp_path / "slide_mm.csv", "mm", 1e3, I, kp))], refine=False)
     assert res_mm.params.inertia == pytest.approx(got, rel=1e-6)
