@@ -367,26 +367,34 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     return sliding_only(Levels(*(np.array(o, dtype=float) for o in out)))
 
 
-CREEP_FRICTION = 0.6  # creep holds less than this fraction of its direction's median level friction …
-CREEP_TRAVEL = 0.01  # … and travels less than this fraction of the median level's travel
+CREEP_FRICTION = 0.6  # creep holds less than this fraction of its direction's median level friction,
+CREEP_TRAVEL = 0.01  # or travels less than this fraction of the median level's travel;
+CREEP_ISOLATED = 0.2  # both, or either one at under this fraction of the next slowest level's speed
 
 
 def sliding_only(levels: Levels) -> Levels:
     """Leave out runs of steady velocity that are the contact creeping in presliding, not
-    points of S(v): a run whose friction is under 60 % of the median of its direction's levels
-    (at least three; sliding needs about F_c) and whose travel (speed × samples) is under 1 %
-    of theirs (a sweep's slowest level travels about 5 % of its median one; a friction
-    following a load or a temperature moves the first measure, not the second). Such runs —
-    a robot joint's torque held between presliding ramps, creeping at 8e-5 to 2.4e-4 rad/s
-    with 0.5 to 2.7 N·m beside levels of 5 to 16 N·m — set the speed that ends presliding
+    points of S(v). Of a direction's levels (at least three), a run is creep if its friction
+    is under 60 % of their median (sliding needs about F_c) and its travel (speed × samples)
+    under 1 % of theirs (a sweep's slowest level travels about 5 % of its median one; a load or
+    a temperature moves the friction, not the travel) — or if it shows one of the two and is
+    more than five times slower than the next slowest level (a sweep's speeds lie a factor 2–3
+    apart). Such runs — a robot joint's torque held between presliding ramps, creeping at
+    8e-5 to 3e-4 rad/s beside a sweep starting at 4e-3 — set the speed that ends presliding
     branches, and none were found."""
     keep = np.ones(len(levels.velocity), dtype=bool)
     travel = np.abs(levels.velocity) * levels.count
     for sign in (1.0, -1.0):
-        m = levels.velocity * sign > 0
-        if m.sum() >= 3:
-            keep[m] = ((np.abs(levels.friction[m]) >= CREEP_FRICTION * np.median(np.abs(levels.friction[m])))
-                       | (travel[m] >= CREEP_TRAVEL * np.median(travel[m])))
+        m = np.flatnonzero(levels.velocity * sign > 0)
+        if len(m) < 3:
+            continue
+        speed = np.abs(levels.velocity[m])
+        weak = np.abs(levels.friction[m]) < CREEP_FRICTION * np.median(np.abs(levels.friction[m]))
+        short = travel[m] < CREEP_TRAVEL * np.median(travel[m])
+        # against the next slowest level that shows neither sign (creep often comes in a few runs)
+        plain = speed[~(weak | short)]
+        isolated = np.array([v < CREEP_ISOLATED * np.min(plain[plain > v], initial=np.inf) for v in speed])
+        keep[m] = ~((weak & short) | ((weak | short) & isolated))
     if keep.all():
         return levels
     return Levels(*(a[keep] for a in (levels.velocity, levels.friction, levels.variance, levels.count)))

@@ -346,12 +346,18 @@ def test_creep_between_presliding_ramps_is_not_a_level():
     from leuven_friction.identify.markov import Levels
     from leuven_friction.identify.segment import sliding_only
 
-    v = np.array([2e-4, 5e-3, 1e-2, 2e-2, 5e-2, 0.1, -5e-3, -1e-2, -2e-2])
-    F = np.array([1.5, 5.1, 5.0, 5.2, 5.6, 6.0, -5.0, -1.6, -5.1])  # -1.6: the load fell to a third
-    n = np.array([60, 900, 800, 700, 600, 500, 900, 800, 700], dtype=float)
+    # creep holding 1.5 of a sweep's 5 and going nowhere; creep near F_s, far slower than the
+    # sweep (1e-4 against 5e-3); a level of 1.6 (the load fell to a third) in the sweep's spacing
+    v = np.array([2e-4, 1e-4, 5e-3, 1e-2, 2e-2, 5e-2, 0.1, -5e-3, -1e-2, -2e-2])
+    F = np.array([1.5, 5.4, 5.1, 5.0, 5.2, 5.6, 6.0, -5.0, -1.6, -5.1])
+    n = np.array([60, 80, 900, 800, 700, 600, 500, 900, 800, 700], dtype=float)
     for scale in (1.0, 1e-3):  # the same in other units: N and mm/s, or kN and m/s
-        kept = sliding_only(Levels(v * scale, F, np.full(9, 1e-4), n))
-        np.testing.assert_array_equal(kept.velocity, np.delete(v, 0) * scale)
+        kept = sliding_only(Levels(v * scale, F, np.full(10, 1e-4), n))
+        np.testing.assert_array_equal(kept.velocity, v[2:] * scale)
+    # a sweep's slowest level, travelling 0.3 % of the median, is kept: it is in the sweep's spacing and slides
+    sweep = np.array([4e-3, 8e-3, 1.6e-2, 3.2e-2, 6.4e-2])
+    kept = sliding_only(Levels(sweep, np.full(5, 5.0), np.full(5, 1e-4), np.array([10.0, 900, 800, 700, 600])))
+    np.testing.assert_array_equal(kept.velocity, sweep)
 
 
 def test_presliding_ramps_of_a_robot_joint_give_a_transition_curve():
