@@ -205,6 +205,9 @@ def _level_residuals(p, levels):
     return (levels.friction - stribeck_curve(p, levels.velocity)) / np.sqrt(levels.variance)
 
 
+REFINED_TOP_MIN = 0.5  # the refined F_d's top must keep at least this fraction of the maximum-likelihood one
+
+
 def refine_fit(res, preps: list[Prepared], *, max_samples: int = 20000, max_nfev: int = 20):
     """Refine ``res`` (a ``fit.FitResult``) in place of its estimates; see the module docstring.
     σ1 is refined too where the data determine it (its σ below half its value); otherwise the
@@ -329,6 +332,17 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
         res.refinement = {"done": False, "reason": "the refined transition curve has a flat segment (an increment "
                           "went to zero): kept the Markov and maximum-likelihood estimates", "rms_before": before}
         return res
+    if vec.has_tc:
+        top = float(vec.unpack(fit.x).transition_curve.F[-1])
+        if top < REFINED_TOP_MIN * res.params.transition_curve.F[-1]:
+            # the opening presliding stretch bounds the lower segments only; the upper ones
+            # collapsed (robot joint 1003 of the generator: F_d's top 11.1 → 3.46 N·m for an outer
+            # loop of 14.5, so that the curve's extension carried z to radians and σ1·dz/dt to
+            # 1400 N·m in the next fast reversal): not a refinement of the curve
+            res.refinement = {"done": False, "reason": f"the refined transition curve's top fell to {top:.3g} from "
+                              f"{res.params.transition_curve.F[-1]:.3g}: kept the Markov and maximum-likelihood estimates",
+                              "rms_before": before}
+            return res
     after = rms(fit.x)
     J = fit.jac
     dof = max(len(fit.fun) - len(fit.x), 1)
