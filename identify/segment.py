@@ -321,9 +321,9 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     """Runs where |v| > v_floor and v stays within rel_tol·|v| + 3·v_noise of itself over a
     window; the first ``settle_fraction`` of each run is dropped (the approach to sliding),
     and a run whose friction still trends (halves differ by > 4σ), or opposes its velocity,
-    is not a level. Level
-    velocity = travel / time over the kept part (exact on quantised positions); variance of
-    the mean friction from batch means (the noise is not white under feedback control)."""
+    is not a level, nor is creep (``sliding_only``). Level velocity = travel / time over the
+    kept part (exact on quantised positions); variance of the mean friction from batch means
+    (the noise is not white under feedback control)."""
     th, rec = prep.th, prep.rec
     F = prep.friction if prep.friction is not None else prep.force
     v, x, t = prep.velocity, rec.position, rec.time
@@ -380,7 +380,7 @@ def sliding_only(levels: Levels) -> Levels:
     a temperature moves the friction, not the travel) — or if it shows one of the two and is
     more than five times slower than the next slowest level (a sweep's speeds lie a factor 2–3
     apart). Such runs — a robot joint's torque held between presliding ramps, creeping at
-    8e-5 to 3e-4 rad/s beside a sweep starting at 4e-3 — set the speed that ends presliding
+    8e-5 to 3e-4 rad/s beside sweeps from 2.5e-3 — set the speed that ends presliding
     branches, and none were found."""
     keep = np.ones(len(levels.velocity), dtype=bool)
     travel = np.abs(levels.velocity) * levels.count
