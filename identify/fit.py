@@ -376,6 +376,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
 
     unc = {} if inertia_sd is None else {"inertia": inertia_sd}
+    from scipy.stats import chi2 as chi2_dist
+
     for side, dec in decisions.items():
         if dec.fit is not None:
             for k in NAMES:
@@ -384,6 +386,12 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                     unc[path] = dec.fit.stderr[k]
             notes.extend(f"{side}: {m}" for m in dec.fit.notes)
             notes.append(f"{side} side: {dec.model}")
+            if dec.fit.dof > 0 and chi2_dist.sf(dec.fit.chi2, dec.fit.dof) < MISFIT_P:
+                # the σ above are those of a form that fits its levels to their noise; say when
+                # it does not (slow holds that stick and slip, a drift or a load along the sweep)
+                notes.append(f"{side} side: this form misfits the levels (χ² = {dec.fit.chi2:.3g} for {dec.fit.dof} "
+                             f"degrees of freedom, p < {MISFIT_P:g}): its σ assume it fits; see the levels against "
+                             f"the curve before trusting them")
     if tfit is not None:
         for i in range(1, len(tfit.F)):
             unc[f"transition_curve.F.{i}"] = float(tfit.stderr[i])
@@ -424,6 +432,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     res.params = res.params.replace(uncertainty={**unc, **res.params.uncertainty} if res.refinement.get("done") else unc,
                                     provenance=prov, units=_units_of(recordings)).validate()
     return res
+
+
+MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not fit its levels
 
 
 def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: bool, held: dict, notes: list,
