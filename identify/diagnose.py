@@ -353,6 +353,8 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
         return None, "not read: no applied force and position to read it from"
     if rec.friction is not None:
         return None, "not read: the friction is measured, eq. (8) is not needed"
+    if len(rec.time) < 50:
+        return None, f"not read: {len(rec.time)} samples, too few to regress the force on the acceleration"
     m = motion_reading(rec)
     vel, v_noise = m.tachometer or (m.velocity, m.v_noise)
     f = np.asarray(rec.force, dtype=np.float64)
@@ -365,7 +367,8 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
                       "positive inertia (too little steady sliding, or two windows disagreeing)")
     if not est.usable:
         return est, f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to use (σ over a quarter of the value)"
-    return est, f"read as {est.value:.4g} ± {est.stderr:.2g} (eq. (8) averaged over {L0} samples)"
+    return est, (f"read as {est.value:.4g} ± {est.stderr:.2g} (the force regressed on the mean acceleration over "
+                 f"{8 * L0 + 1} and {32 * L0 + 1} samples)")
 
 
 def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction") -> Comparison:
@@ -511,12 +514,12 @@ def inertia_from_force(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_re
         uniform_filter1d(hats, n_avg, axis=0, mode="nearest", output=X[:, :-1])  # (no column_stack copy)
         X[:, -1] = acc
         y = uniform_filter1d(f, n_avg, mode="nearest")
-        est[n_avg] = (solve(X, y, steady), steady, X, y)
-    (I1, *_), (I2, steady, X2, y2) = est.values()
+        est[n_avg] = (solve(X, y, steady), steady)
+    (I1, _), (I2, steady) = est.values()  # X, y: the longer window's, for the jackknife
     if I1 <= 0 or I2 <= 0 or abs(I1 - I2) > 0.1 * I2:
         return None
     block = np.minimum(rows * JACKKNIFE_BLOCKS // len(v), JACKKNIFE_BLOCKS - 1)[steady]
-    jk = _jackknife_last_coefficient(X2[steady], y2[steady], block)
+    jk = _jackknife_last_coefficient(X[steady], y[steady], block)
     return InertiaEstimate(I2, math.sqrt((JACKKNIFE_BLOCKS - 1) / JACKKNIFE_BLOCKS * float(np.sum((jk - jk.mean()) ** 2))))
 
 
@@ -524,7 +527,7 @@ def _jackknife_last_coefficient(X: np.ndarray, y: np.ndarray, block: np.ndarray)
     """The last least-squares coefficient of y on X with each block's rows left out in turn,
     from the blocks' normal equations (columns scaled to unit norm first): one pass over a
     million rows instead of one least-squares solve per block."""
-    scale = np.sqrt(np.sum(X * X, axis=0))
+    scale = np.sqrt(np.einsum("ij,ij->j", X, X))
     scale[scale == 0] = 1.0
     Xn = X / scale
     k = X.shape[1]

@@ -332,7 +332,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                          f"{unresolved}")
             unbounded = 0.0
         else:
-            unbounded = float(z[-1])  # how far in z the furthest branch reached: a scale for the held curve
+            unbounded = float(reaches.max())  # how far in z the furthest branch reached: a scale for the held curve
     else:
         unbounded = 0.0
     why_curve = ("the branches do not bound F_d" if unbounded else
@@ -446,6 +446,8 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
     no parameter file was given: the built-in default is another machine's. A file's inertia
     is kept (a value from the drawings is usually better than a regression on a log), and the
     notes say what the recording reads. Held and named otherwise."""
+    from scipy.stats import chi2 as chi2_dist
+
     from .diagnose import recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
 
     reads = []
@@ -455,15 +457,24 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
             notes.append(f"{r.source}: inertia {why}")  # "inertia read as …" / "inertia not read: …"
         if est is not None and est.usable:
             reads.append(est)
+    if not any(r.force is not None and r.friction is None for r in recordings):
+        held["inertia"] = f"not needed: no recording takes friction from an applied force (eq. (8)): kept {start}"
+        return p, None
     if not reads:
         held["inertia"] = f"not determined by the recordings (see the notes): kept {start}"
         return p, None
-    w = np.array([1.0 / e.stderr**2 for e in reads])
-    value = float(np.sum(w * np.array([e.value for e in reads])) / np.sum(w))
+    values = np.array([e.value for e in reads])
+    w = 1.0 / np.maximum(np.array([e.stderr for e in reads]), 1e-9 * values) ** 2
+    value = float(np.sum(w * values) / np.sum(w))
     sd = float(1.0 / math.sqrt(np.sum(w)))
+    spread = float(np.sum(w * (values - value) ** 2))
+    if len(reads) > 1 and chi2_dist.sf(spread, len(reads) - 1) < MISFIT_P:
+        held["inertia"] = (f"the recordings read {', '.join(f'{e.value:.4g} ± {e.stderr:.2g}' for e in reads)}, "
+                           f"which disagree beyond their σ: kept {start}")
+        return p, None
     if from_file:
         off = abs(value - p.inertia) / sd
-        held["inertia"] = (f"kept from the starting parameter file ({p.inertia:.4g}); the recordings read "
+        held["inertia"] = (f"kept from the parameters the fit started from ({p.inertia:.4g}); the recordings read "
                            f"{value:.4g} ± {sd:.2g}" + (f", {off:.1f} σ from it" if off > 3 else ""))
         return p, None
     notes.append(f"inertia {value:.4g} ± {sd:.2g} read from the applied force (eq. (8)), replacing the built-in "

@@ -233,9 +233,9 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
                 # and width once δ may be anything in its range: those are held where the fit
                 # with δ held put them — the curve still passes through the levels, where
                 # Coulomb + viscous would bend F_c and σ2 to reach the slowest ones
-                for k in bad2:
-                    held[k] = (f"not determined by the levels (σ {fit2.stderr[k]:.2g} with δ anywhere in "
-                               f"{DELTA_RANGE[0]:g}–{DELTA_RANGE[1]:g}): held at the fit's value with δ = {delta_hold:g}")
+                for name in bad2:
+                    held[name] = (f"not determined by the levels (σ {fit2.stderr[name]:.2g} with δ anywhere in "
+                                  f"{DELTA_RANGE[0]:g}–{DELTA_RANGE[1]:g}): held at the fit's value with δ = {delta_hold:g}")
                 return SideDecision(fit2, held, f"Stribeck + viscous (δ, {', '.join(bad2)} held)")
         why = (f"only {below} level(s) below the Stribeck velocity" if below < 2
                else f"{', '.join(bad)} not determined by the levels (σ > half the value, a bound or a negative variance)")

@@ -393,7 +393,9 @@ def sliding_only(levels: Levels) -> Levels:
         short = travel[m] < CREEP_TRAVEL * np.median(travel[m])
         # against the next slowest level that shows neither sign (creep often comes in a few runs)
         plain = speed[~(weak | short)]
-        isolated = np.array([v < CREEP_ISOLATED * np.min(plain[plain > v], initial=np.inf) for v in speed])
+        # (the fastest level has none to be isolated from)
+        isolated = np.array([bool(np.any(plain > v)) and v < CREEP_ISOLATED * np.min(plain[plain > v], initial=np.inf)
+                             for v in speed])
         keep[m] = ~((weak & short) | ((weak | short) & isolated))
     if keep.all():
         return levels

@@ -340,7 +340,15 @@ def test_the_inertia_is_read_from_the_applied_force_and_written_with_its_sd(tmp_
     base = default_params().replace(inertia=3.0)
     kept = fit_recordings([load_recording(tmp_path / "slide_m.csv")], base=base, refine=False)
     assert kept.params.inertia == 3.0 and "inertia" not in kept.params.uncertainty
-    assert kept.held["inertia"].startswith("kept from the starting parameter file (3); the recordings read 0.7")
+    assert kept.held["inertia"].startswith("kept from the parameters the fit started from (3); the recordings read 0.7")
+    # a short file beside it cannot stop the fit: its inertia is not read, and the notes say why
+    short = tmp_path / "short.csv"
+    short.write_text("\n".join((tmp_path / "slide_m.csv").read_text().splitlines()[:41]) + "\n")
+    both = fit_recordings([load_recording(tmp_path / "slide_m.csv"), load_recording(short)], refine=False)
+    assert any("short.csv: inertia not read: 40 samples" in m for m in both.notes), both.notes
+    # a tribometer measures its friction: the inertia is not needed, and said so
+    tri, _ = make_recording("tribometer", seed=2)
+    assert fit_recordings([_rec(tri, "tri.csv")], refine=False).held["inertia"].startswith("not needed")
 
 
 def test_creep_between_presliding_ramps_is_not_a_level():
@@ -361,6 +369,10 @@ def test_creep_between_presliding_ramps_is_not_a_level():
     # a sweep's slowest level, travelling 0.3 % of the median, is kept: it is in the sweep's spacing and slides
     sweep = np.array([4e-3, 8e-3, 1.6e-2, 3.2e-2, 6.4e-2])
     kept = sliding_only(Levels(sweep, np.full(5, 5.0), np.full(5, 1e-4), np.array([10.0, 900, 800, 700, 600])))
+    np.testing.assert_array_equal(kept.velocity, sweep)
+    # nor is the fastest level dropped for holding less (the load fell): none is faster to stand apart from
+    weak_top = np.array([5.0, 5.1, 5.2, 5.5, 2.0])
+    kept = sliding_only(Levels(sweep, weak_top, np.full(5, 1e-4), np.full(5, 700.0)))
     np.testing.assert_array_equal(kept.velocity, sweep)
 
 
