@@ -28,6 +28,7 @@ from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import Prepared, constant_velocity_levels, force_branches, motion_branches, noise_sd, prepare
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
+RESOLVED = 2.0  # position-noise σ (or encoder steps) a displacement must exceed to be told from none
 BRANCH_SPAN_RATIO = 100.0  # a branch moving this many times the median branch has slid (see ``sliding_branches``)
 
 
@@ -141,7 +142,7 @@ def knots_from_data(datasets, n: float = 7.0) -> np.ndarray:
     for f in KNOT_FRACTIONS:
         # where the force change first reaches the fraction (the top knot: the end of the data)
         zi = reach if f >= 1.0 else float(zb[int(np.searchsorted(fb, f * fb[-1]))])
-        if zi - z[-1] >= 2.0 * resolution:
+        if zi - z[-1] >= RESOLVED * resolution:
             z.append(zi)
     if len(z) < 2:
         raise UnresolvedCurve(reach, resolution)
@@ -323,7 +324,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         n_br = 0
         reaches = np.array([branch_z(b, n)[-1] for b in observed_branches(datasets)])
         resolution = min(d.x_noise for d in datasets)
-        if knots is None and len(reaches) and np.median(reaches) < 2.0 * resolution:
+        if knots is None and len(reaches) and np.median(reaches) < RESOLVED * resolution:
             # most branches never left two encoder steps (or noise σ): the few that did went
             # further than presliding reaches (they slid, under a controller's push) and bound
             # nothing; the presliding is not resolved
