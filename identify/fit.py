@@ -63,6 +63,28 @@ def _merge_levels(parts: list[Levels]) -> Levels:
     return Levels(*(np.concatenate([getattr(p, k) for p in parts]) for k in ("velocity", "friction", "variance", "count")))
 
 
+def left_out(levels: Levels) -> str:
+    """The runs of steady velocity the segmentation did not take as levels, in words ("" if none)."""
+    parts = []
+    if levels.opposing:
+        parts.append(f"{levels.opposing} run(s) whose friction opposes their velocity (a presliding spring giving "
+                     f"back, not sliding)")
+    if levels.creep:
+        parts.append(f"{levels.creep} run(s) of creep (weak or short beside the other levels: segment.sliding_only)")
+    return "; left out: " + " and ".join(parts) if parts else ""
+
+
+def sign_hint(prep: Prepared, levels: Levels) -> str:
+    """What to try when every steady run of a measured friction opposed its velocity: sliding
+    dissipates, so the column's sign is then the likelier fault ("" otherwise)."""
+    if prep.rec.friction is None or len(levels.velocity) or levels.opposing < 2:
+        return ""
+    taken = "reaction (flipped)" if prep.sign_flipped else "action"
+    return (f"every steady run's friction ({levels.opposing}) opposes its velocity with the friction "
+            f"taken as {taken}: the column likely has the other sign (--friction-sign auto detects it, or force "
+            f"the other one)")
+
+
 MAX_BRANCHES, MAX_POINTS = 10, 100
 
 
@@ -234,7 +256,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     levels = _merge_levels(per_file)
     for pr, lv in zip(preps, per_file):
         notes.append(f"{pr.source}: {len(lv.velocity)} constant-velocity level(s) "
-                     f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)")
+                     f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)"
+                     + left_out(lv) + "".join(f"; {h}" for h in [sign_hint(pr, lv)] if h))
 
     # --- S(v): Markov estimator per side, honest about what the levels determine ------------
     say(0.2, f"Markov estimator on {len(levels.velocity)} levels")
@@ -372,7 +395,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             raise IdentificationError(f"nothing to fit: no constant-velocity levels, and {why_curve} (the segments "
                                       f"ran to their limit): more presliding cycles, or --params to start from")
         raise IdentificationError("nothing to fit: the data hold neither constant-velocity levels nor presliding "
-                                  "branches (force ramps with reversals, or reversals of a motion with measured friction)")
+                                  "branches (force ramps with reversals, or reversals of a motion with measured friction)"
+                                  + "".join(f"; {pr.source}: {h}" for pr, lv in zip(preps, per_file)
+                                            if (h := sign_hint(pr, lv))))
     p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start)
     held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
 

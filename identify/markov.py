@@ -21,12 +21,15 @@ NAMES = ("Fs", "Fc", "vs", "delta", "sigma2")
 
 @dataclass
 class Levels:
-    """Constant-velocity levels: mean velocity, mean friction, variance of that mean."""
+    """Constant-velocity levels: mean velocity, mean friction, variance of that mean; and how
+    many runs of steady velocity the segmentation left out as not being points of S(v)."""
 
     velocity: np.ndarray
     friction: np.ndarray
     variance: np.ndarray
     count: np.ndarray
+    opposing: int = 0  # runs whose friction opposes their velocity (``segment.constant_velocity_levels``)
+    creep: int = 0  # runs of presliding creep (``segment.sliding_only``)
 
 
 @dataclass
@@ -237,8 +240,14 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
                     held[name] = (f"not determined by the levels (σ {fit2.stderr[name]:.2g} with δ anywhere in "
                                   f"{DELTA_RANGE[0]:g}–{DELTA_RANGE[1]:g}): held at the fit's value with δ = {delta_hold:g}")
                 return SideDecision(fit2, held, f"Stribeck + viscous (δ, {', '.join(bad2)} held)")
-        why = (f"only {below} level(s) below the Stribeck velocity" if below < 2
-               else f"{', '.join(bad)} not determined by the levels (σ > half the value, a bound or a negative variance)")
+        if below >= 2 and bad == ["delta"]:
+            # δ alone was undetermined; what sends the side to Coulomb + viscous is what its
+            # spread then leaves undetermined besides F_s and v_s (F_c or σ2)
+            why = (f"δ not determined by the levels, and with δ anywhere in {DELTA_RANGE[0]:g}–{DELTA_RANGE[1]:g} "
+                   f"neither is {', '.join(n for n in bad2 if n not in ('Fs', 'vs'))} (σ > half the value)")
+        else:
+            why = (f"only {below} level(s) below the Stribeck velocity" if below < 2
+                   else f"{', '.join(bad)} not determined by the levels (σ > half the value, a bound or a negative variance)")
     else:
         why = (f"only {speeds} distinct speed(s) in {k} level(s) on this side; the Stribeck curve needs at least 6 "
                f"levels at 4 or more speeds")

@@ -329,6 +329,7 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     v, x, t = prep.velocity, rec.position, rec.time
     w = max(th.window, 5)
     out = ([], [], [], [])
+    opposing = 0
     for a, b in prep.chunks:
         vv = v[a:b]
         steady = (np.abs(vv) > th.v_floor) & prep.usable[a:b]
@@ -355,6 +356,7 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
             if np.mean(f) * vel <= 0:
                 # sliding dissipates: S(v) has the sign of v. A slow creep whose force opposes it
                 # is the presliding spring giving back (a robot joint's torque ramps), not a level
+                opposing += 1
                 continue
             h = len(f) // 2
             se = np.sqrt(_batch_var_of_mean(f[:h], 4) + _batch_var_of_mean(f[h:], 4))
@@ -364,7 +366,7 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
             out[1].append(float(np.mean(f)))
             out[2].append(_batch_var_of_mean(f))
             out[3].append(e - s)
-    return sliding_only(Levels(*(np.array(o, dtype=float) for o in out)))
+    return sliding_only(Levels(*(np.array(o, dtype=float) for o in out), opposing=opposing))
 
 
 CREEP_FRICTION = 0.6  # creep holds less than this fraction of its direction's median level friction,
@@ -399,7 +401,8 @@ def sliding_only(levels: Levels) -> Levels:
         keep[m] = ~((weak & short) | ((weak | short) & isolated))
     if keep.all():
         return levels
-    return Levels(*(a[keep] for a in (levels.velocity, levels.friction, levels.variance, levels.count)))
+    return Levels(*(a[keep] for a in (levels.velocity, levels.friction, levels.variance, levels.count)),
+                  opposing=levels.opposing, creep=levels.creep + int(np.sum(~keep)))
 
 
 @njit(cache=True)

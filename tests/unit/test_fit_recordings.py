@@ -376,6 +376,36 @@ def test_creep_between_presliding_ramps_is_not_a_level():
     np.testing.assert_array_equal(kept.velocity, sweep)
 
 
+def test_runs_left_out_are_counted_and_said():
+    # a run whose friction opposes its velocity, and creep, are counted on the levels and said per file
+    from leuven_friction.identify.fit import left_out
+    from leuven_friction.identify.markov import Levels
+    from leuven_friction.identify.segment import sliding_only
+
+    v = np.array([1e-4, 5e-3, 1e-2, 2e-2, 5e-2])
+    kept = sliding_only(Levels(v, np.array([1.5, 5.1, 5.0, 5.2, 5.6]), np.full(5, 1e-4),
+                               np.array([60.0, 900, 800, 700, 600]), opposing=2))
+    assert (len(kept.velocity), kept.creep, kept.opposing) == (4, 1, 2)
+    said = left_out(kept)
+    assert "2 run(s) whose friction opposes" in said and "1 run(s) of creep" in said
+    assert left_out(Levels(v, np.full(5, 5.0), np.full(5, 1e-4), np.full(5, 700.0))) == ""
+
+
+def test_a_friction_column_forced_to_the_wrong_sign_is_told_to_try_the_other():
+    # the tribometer logs friction as a reaction; forced to "action", every steady run opposes
+    # its velocity: the fit has nothing to fit, and says the sign is the likely cause
+    df, truth = make_recording("tribometer", 3)
+    assert truth.sign == "reaction"
+    rec = _rec(df, "tri.tsv", "\t")
+    with pytest.raises(IdentificationError) as e:
+        fit_recordings([rec], refine=False, friction_sign="action")
+    msg = str(e.value)
+    assert "\n" not in msg and "tri.tsv" in msg and "opposes its velocity" in msg and "--friction-sign" in msg
+    # with the sign detected, the same file fits, and no such hint is given
+    res = fit_recordings([rec], refine=False)
+    assert not any("other sign" in n for n in res.notes)
+
+
 def test_presliding_ramps_of_a_robot_joint_give_a_transition_curve():
     # the generator's robot joint (Maxwell-slip elements, synth/hidden.py) holds its torque
     # between presliding ramps and creeps at 1.4e-4 rad/s with the torque opposing the motion:

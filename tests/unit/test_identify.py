@@ -140,3 +140,17 @@ def test_ml_uncertainty_is_calibrated_over_monte_carlo():
     assert np.all(np.abs(ratio - 1) < 0.25), ratio
     coverage = np.mean(np.abs(est - F_TRUE[1:]) < sds, axis=0)
     assert np.all((coverage > 0.54) & (coverage < 0.82)), coverage  # ~68 %, binomial 2σ for 50 draws
+
+
+def test_a_side_sent_to_coulomb_viscous_names_what_was_undetermined():
+    # levels with a Stribeck rise too noisy for δ, then for σ2 once δ may be anything in its
+    # range: the side falls back to Coulomb + viscous, and the reason says σ2 (not δ alone)
+    from leuven_friction.identify.markov import fit_side_honest
+
+    rng = np.random.default_rng(87)
+    v = np.geomspace(0.2, 30, 8) * 1e-3
+    s2, sd = rng.choice([2.0, 20.0, 0.0]), rng.choice([0.05, 0.2, 0.5])
+    F = 5.0 + 2.0 * np.exp(-v / 2e-3) + s2 * v + rng.normal(0, sd, len(v))
+    dec = fit_side_honest(Levels(v, F, np.full(len(v), sd**2), np.full(len(v), 500.0)), 1)
+    assert set(dec.held) >= {"Fs", "vs", "delta"}
+    assert "neither is sigma2" in dec.held["Fs"], dec.held["Fs"]
