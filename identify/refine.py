@@ -34,7 +34,7 @@ from scipy.signal import savgol_filter
 from ..model import SignalError, Stribeck, StribeckSide, TransitionCurve, simulate_displacement, simulate_force
 from .markov import NAMES
 from .mle import Quantized
-from .segment import Prepared, moving_average
+from .segment import Prepared, _turning_points, moving_average
 
 
 @dataclass
@@ -46,6 +46,22 @@ class Experiment:
     measured: np.ndarray
     weight: np.ndarray  # 1/σ per sample (0: not compared)
     x0: float = 0.0
+    offset_from: int | None = None  # force-driven: from this sample on, one position offset is left free
+
+
+def free_offset(d: np.ndarray, w: np.ndarray, start: int | None) -> np.ndarray:
+    """The residual ``d`` with its ``w``-weighted mean taken out from sample ``start`` on (see
+    ``experiments_of``: the position offset that the first curve leaves)."""
+    if start is None:
+        return d
+    tail = d[start:]
+    ww = w[start:] ** 2
+    ok = np.isfinite(tail) & (ww > 0)
+    if not ok.any():
+        return d
+    out = d.copy()
+    out[start:] = tail - float(np.sum(ww[ok] * tail[ok]) / np.sum(ww[ok]))
+    return out
 
 
 def _smooth(x, w):
@@ -92,8 +108,19 @@ def experiments_of(preps: list[Prepared], max_samples: int, z_first: float = np.
             sd = np.sqrt(noise.step ** 2 / 12.0 + noise.jitter ** 2) if isinstance(noise, Quantized) else noise.sigma
             f = pr.force[:end]
             fs = _smooth(f, th.window)  # the applied force is the input: its sensor noise is not a force on the plant
-            out.append(Experiment("force", pr.source, rec.time[sl], fs[sl], rec.position[sl],
-                                  np.full(len(rec.time[sl]), 1.0 / sd), x0=float(rec.position[0])))
+            w = np.full(len(rec.time[sl]), 1.0 / sd)
+            # the stretch starts from the machine's history, which the log does not show (from a
+            # virgin contact, its first curve is not the model's F_d either): the first curve,
+            # up to the first turn of the applied force, is not compared, and the position offset
+            # that curve leaves at its turn — inherited by every later branch until gross
+            # sliding — is left free (as the diagnosis does in friction, ``initial_memory``).
+            # Otherwise F_d is reshaped to make up for the first curve.
+            turns = _turning_points(fs, th.f_turn)
+            first = int(np.ceil(turns[1] / k)) if len(turns) > 2 else None
+            if first is not None:
+                w[:first] = 0.0
+            out.append(Experiment("force", pr.source, rec.time[sl], fs[sl], rec.position[sl], w,
+                                  x0=float(rec.position[0]), offset_from=first))
     return out
 
 
@@ -283,7 +310,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                 sim = _simulate(p, e)
             except (SignalError, ValueError, FloatingPointError):
                 sim = np.full(len(e.t), np.nan)
-            d = e.measured - sim
+            d = free_offset(e.measured - sim, e.weight, e.offset_from)
             r.append(np.where(np.isfinite(d), d, 1e6 / np.maximum(e.weight, 1e-300)) * e.weight)
         return r
 
