@@ -612,3 +612,57 @@ def test_rests_are_unresolved_where_the_friction_swings_while_the_position_stand
     # the joint stood for the first 20 s (10,000 samples): nearly all of them are the rests left
     # out, and next to nothing of the 20 s of sliding after them
     assert hidden.mask[:10_000].mean() > 0.95 and hidden.mask[10_000:].mean() < 0.02
+
+
+def test_the_compared_path_removes_wiggles_without_lagging_the_motion():
+    # a triangle of travel ±1 with Gaussian noise of sd 1e-3 and dwells: the play of half-width
+    # h = 4 sd holds the dwells flat but runs h behind while moving (after each reversal the
+    # model would run 2h behind on its transition curve); the centred play follows the motion
+    from leuven_friction.identify.diagnose import centred_play, play
+
+    rng = np.random.default_rng(3)
+    legs, pos = [], 0.0
+    for end in (1.0, -1.0, 1.0, 0.0):
+        legs.append(np.linspace(pos, end, 2000))
+        legs.append(np.full(500, end))
+        pos = end
+    x_true = np.concatenate(legs)
+    sd, h = 1e-3, 4e-3
+    x = x_true + rng.normal(0.0, sd, len(x_true))
+    v = np.gradient(x_true)
+    moving = np.abs(v) > 0
+    for path, lag in ((play(x, h), h), (centred_play(x, h), 0.0)):
+        err = (path - x_true)[moving] * np.sign(v[moving])
+        assert abs(np.mean(err) + lag) < 0.3 * h, (np.mean(err), lag)
+    c = centred_play(x, h)
+    # the path turns three times, where the motion does: no wiggle of the dwells reaches the model
+    # (after its first samples: the play starts at the first reading, a noise draw h from it moves it)
+    steps = np.sign(np.diff(c[50:]))
+    steps = steps[steps != 0]
+    assert int(np.sum(steps[1:] != steps[:-1])) == 3
+    # the turns are where the motion turned (within the noise), not h short of them
+    assert abs(c.max() - 1.0) < 4 * sd and abs(c.min() + 1.0) < 4 * sd
+    # the path the diagnosis compares along is the centred one for such a sensor (Gaussian noise)
+    from leuven_friction.identify.diagnose import compared_path
+
+    cp = compared_path(x, 1e-3)
+    assert cp.step == 0.0
+    assert abs(np.mean((cp.path - x_true)[moving] * np.sign(v[moving]))) < 0.3 * cp.h
+
+
+def test_median_stroke_is_the_stroke_that_carries_the_travel_not_a_controllers_dither():
+    from leuven_friction.identify.diagnose import median_stroke
+
+    # six strokes of 0.2 with dwells in which a controller holding the position reverses forty
+    # times by 3e-5 (over min_excursion = 1e-5): 240 dither strokes against 6 real ones, but
+    # they carry 1 % of the travel
+    legs, pos = [], 0.0
+    for k in range(6):
+        end = 0.2 if k % 2 == 0 else 0.0
+        legs.append(np.linspace(pos, end, 400))
+        legs.append(end + 3e-5 * (np.arange(40 * 8) // 8 % 2))
+        pos = end
+    x = np.concatenate(legs)
+    t = np.arange(len(x)) * 1e-3
+    c = _cmp(t, x, np.gradient(x, t), z_pres=0.01)
+    assert abs(median_stroke(c) - 0.2) < 0.01
