@@ -255,9 +255,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     per_file = [constant_velocity_levels(pr) for pr in preps]
     levels = _merge_levels(per_file)
     for pr, lv in zip(preps, per_file):
+        hint = sign_hint(pr, lv)
         notes.append(f"{pr.source}: {len(lv.velocity)} constant-velocity level(s) "
                      f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)"
-                     + left_out(lv) + "".join(f"; {h}" for h in [sign_hint(pr, lv)] if h))
+                     + left_out(lv) + (f"; {hint}" if hint else ""))
 
     # --- S(v): Markov estimator per side, honest about what the levels determine ------------
     say(0.2, f"Markov estimator on {len(levels.velocity)} levels")

@@ -34,7 +34,7 @@ from scipy.signal import savgol_filter
 from ..model import SignalError, Stribeck, StribeckSide, TransitionCurve, simulate_displacement, simulate_force
 from .markov import NAMES
 from .mle import Quantized
-from .segment import Prepared, _turning_points, moving_average
+from .segment import Prepared, turning_points, moving_average
 
 
 @dataclass
@@ -115,7 +115,7 @@ def experiments_of(preps: list[Prepared], max_samples: int, z_first: float = np.
             # that curve leaves at its turn — inherited by every later branch until gross
             # sliding — is left free (as the diagnosis does in friction, ``initial_memory``).
             # Otherwise F_d is reshaped to make up for the first curve.
-            turns = _turning_points(fs, th.f_turn)
+            turns = turning_points(fs, th.f_turn)
             first = int(np.ceil(turns[1] / k)) if len(turns) > 2 else None
             if first is not None:
                 w[:first] = 0.0

@@ -406,7 +406,7 @@ def sliding_only(levels: Levels) -> Levels:
 
 
 @njit(cache=True)
-def _turning_points(s, h):
+def turning_points(s, h):
     """Indices of alternating extrema of ``s``, each confirmed by a move of ``h`` away
     (first and last sample included)."""
     n = len(s)
@@ -490,7 +490,7 @@ def force_branches(prep: Prepared, Fs_pos: float, Fs_neg: float, v_max: float, *
     for a0, b0 in prep.chunks:
         f = prep.force[a0:b0]
         fs = moving_average(f, max(5, th.window | 1)) if len(f) > 7 else f
-        turns = _turning_points(fs, th.f_turn)
+        turns = turning_points(fs, th.f_turn)
         x = rec.position[a0:b0]
         v = np.abs(prep.velocity[a0:b0])
         ok = prep.usable[a0:b0]
@@ -526,7 +526,7 @@ def motion_branches(prep: Prepared, *, min_points: int = 5) -> list[Branch]:
         F = prep.friction[a0:b0]
         v = prep.velocity[a0:b0]
         ok = prep.usable[a0:b0]
-        turns = _turning_points(x, th.x_turn)
+        turns = turning_points(x, th.x_turn)
         for k in range(1, len(turns) - 1):
             r, nxt = turns[k], turns[k + 1]
             direction = np.sign(x[nxt] - x[r])
