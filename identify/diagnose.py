@@ -158,7 +158,7 @@ class Comparison:
         # ``model.effects.context_of`` takes (the only effect reading it, rate_stiffness, would
         # follow the steps a smoothed encoder path still makes)
         return Context(time=self.time, position=self.path, velocity=self.velocity, load=self.load,
-                       reversals=significant_reversals(self.path, self.min_excursion))
+                       reversals=significant_reversals(self.path, self.min_excursion), min_excursion=self.min_excursion)
 
 
 def _mad_sd(a: np.ndarray) -> float:
@@ -714,9 +714,10 @@ def ripple_min_wavelength(cmp_: Comparison) -> float:
     return max(2.0 * cmp_.z_presliding, 10.0 * cmp_.position_noise)
 
 
-def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None) -> Term:
+def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, threshold: float | None = None) -> Term:
     """The free parameters of effect ``name`` on this comparison; ``strokes`` (``stroke_order``)
-    sets how far a softening must be seen to settle (``softening_nc_max``)."""
+    sets how far a softening must be seen to settle (``softening_nc_max``), ``threshold`` the
+    back-travel that counts as its reversal (default: the comparison's ``min_excursion``)."""
     t = cmp_.time
     T = float(t[-1] - t[0])
     if name == "time_drift":
@@ -736,8 +737,9 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None) -
                                ("wavelength", "log", math.log(lo), math.log(span / 2)),
                                ("cs2", "lin", -0.5, 0.5), ("cc2", "lin", -0.5, 0.5)))
     if name == "cyclic_softening":
-        nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1])
-        return Term(name, {"min_excursion": cmp_.min_excursion},
+        th = cmp_.min_excursion if threshold is None else float(threshold)
+        nrev = float(significant_reversals(cmp_.path, th)[-1])
+        return Term(name, {"min_excursion": th},
                     # n_c ≥ 3: a change complete within a couple of reversals is a constant
                     # stiffness factor, which the alternative's κ0 already holds; n_c at most a
                     # fraction of the reversals (``softening_nc_max``): a change still far from
@@ -1290,7 +1292,7 @@ def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, b
     if name == "time_drift":
         return [("tau", math.log(v)) for v in T * np.geomspace(0.1, 3.0, 6)]
     if name == "cyclic_softening":
-        nrev = float(significant_reversals(cmp_.path, cmp_.min_excursion)[-1]) or 1.0
+        nrev = float(significant_reversals(cmp_.path, term.fixed["min_excursion"])[-1]) or 1.0
         return [("n_c", math.log(max(v, 3.0))) for v in nrev * np.geomspace(0.05, 0.5, 4)]
     if name == "position_ripple":
         lo = term.free[2][2]
@@ -1304,9 +1306,10 @@ def _amplitude_names(name):
 
 
 def screen(engine: Engine, name: str, term: Term, prior: list, prior_u: np.ndarray, base_fit: FitResult,
-           mask: np.ndarray) -> np.ndarray | None:
+           mask: np.ndarray) -> tuple[np.ndarray, float] | None:
     """The best start for a candidate: for each shape value, the amplitudes by one secant
-    (Gauss-Newton) step from zero effect. Returns the full u vector for ``_fit``."""
+    (Gauss-Newton) step from zero effect. Returns the full u vector for ``_fit`` and the
+    residual sum of squares the step leaves."""
     meas = engine.c.measured
     r0 = (meas - base_fit.pred)[mask]
     best = None
@@ -1335,7 +1338,45 @@ def screen(engine: Engine, name: str, term: Term, prior: list, prior_u: np.ndarr
     if best is None:
         return None
     head = [math.log(base_fit.g)]
-    return np.concatenate([head, prior_u, best[1]])
+    return np.concatenate([head, prior_u, best[1]]), best[0]
+
+
+SOFTENING_THRESHOLDS = 6  # back-travels tried as a softening's reversal: min_excursion × 1, 2, 4, … 32
+SOFTENING_MIN_COUNT = 6  # … each counting at least this many reversals (n_c ≥ 3 must be seen settling)
+
+
+def softening_thresholds(cmp_: Comparison) -> list:
+    """The back-travels a softening's reversal is tried with, from the comparison's
+    ``min_excursion`` (a quarter of the presliding range, or the position's noise) up by
+    factors of 2 while they still count SOFTENING_MIN_COUNT reversals; one counting the
+    same reversals as a smaller one is left out. What wears a contact in need not be every
+    back-travel past the presliding range: a session whose presliding tests make many small
+    cycles early would, counted that way, show the change late and never settle."""
+    out, seen = [], None
+    for k in range(SOFTENING_THRESHOLDS):
+        th = cmp_.min_excursion * 2.0**k
+        count = significant_reversals(cmp_.path, th)
+        if count[-1] < SOFTENING_MIN_COUNT:
+            break
+        if seen is not None and np.array_equal(count, seen):
+            continue
+        out.append(th)
+        seen = count
+    return out or [cmp_.min_excursion]
+
+
+def screen_term(engine: Engine, name: str, cmp_: Comparison, strokes: SpeedOrder | None, prior: list,
+                prior_u: np.ndarray, base_fit: FitResult, mask: np.ndarray) -> tuple[Term, np.ndarray] | None:
+    """The candidate's term and its start (``screen``); a softening's reversal threshold is a
+    shape parameter as well, chosen among ``softening_thresholds`` by the screen's residual."""
+    ths = softening_thresholds(cmp_) if name == "cyclic_softening" else [None]
+    best = None
+    for th in ths:
+        term = _terms_for(name, cmp_, strokes, th)
+        got = screen(engine, name, term, prior, prior_u, base_fit, mask)
+        if got is not None and (best is None or got[1] < best[2]):
+            best = (term, got[0], got[1])
+    return None if best is None else best[:2]
 
 
 # ---------------------------------------------------------------- cross-validation
@@ -1995,7 +2036,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     prior_u = np.zeros(0)
     for e in prior0:
         if e["name"] in EFFECTS and e["name"] != "presliding_stiffness":
-            tm = _terms_for(e["name"], cmp_, strokes)
+            tm = _terms_for(e["name"], cmp_, strokes, e["params"].get("min_excursion"))
             tm = Term(tm.name, {k: e["params"][k] for k in tm.fixed}, tm.free, tm.settles)
             prior_terms.append(tm)
             prior_u = np.concatenate([prior_u, _entry_to_u(tm, e["params"])])
@@ -2103,10 +2144,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
             alt = beside_rate if (beside_rate is not None and EFFECTS[name].acts_on == "stiffness") else plain
             rss_null = alt.fit.rss
-            term = _terms_for(name, cmp_, strokes)
-            u0 = screen(engine, name, term, alt.fit.entries, alt.u, alt.fit, allm)
-            if u0 is None:
+            got = screen_term(engine, name, cmp_, strokes, alt.fit.entries, alt.u, alt.fit, allm)
+            if got is None:
                 continue
+            term, u0 = got
             terms = alt.terms + [term]
             fr = _fit(engine, terms, u0, allm, fit_k0=alt.fit_k0, k0=k0)
             rms_c, rms_a = _rms((meas - fr.pred)[allm]), _rms((meas - alt.fit.pred)[allm])
@@ -2177,7 +2218,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         named.append(winner.name)
         # σ of every named effect's parameters from this round's cross-validation, where they were
         # all refitted with the winner; the last round's go into the file written
-        cur_terms = winner.against.terms + [_terms_for(winner.name, cmp_, strokes)]
+        cur_terms = winner.against.terms + [_terms_for(winner.name, cmp_, strokes, winner.params.get("min_excursion"))]
         sds = effect_sds(cur_terms, winner.fit.entries, winner.fold_entries, set(named) | refitted_prior)
         say(0.1 + 0.8 * (step + 1) / s.max_effects, f"adding {winner.name} and refitting everything together")
         # the model goes on as the one that was cross-validated: an effect judged beside a

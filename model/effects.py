@@ -79,13 +79,26 @@ class Context:
     position: np.ndarray | None = None
     velocity: np.ndarray | None = None
     load: np.ndarray | None = None
-    reversals: np.ndarray | None = None  # running count of significant reversals
+    reversals: np.ndarray | None = None  # running count of significant reversals above ``min_excursion``
+    min_excursion: float = 0.0
+    # counts above other thresholds, made once per context (a softening's own min_excursion)
+    _counts: dict = field(default_factory=dict, repr=False, compare=False)
 
     def signal(self, name: str, effect: str) -> np.ndarray:
         a = getattr(self, name)
         if a is None:
             raise ParameterError(f"effects.{effect}: needs the {name.replace('_', ' ')} signal, which this drive does not have")
         return a
+
+    def reversals_above(self, min_excursion: float, effect: str) -> np.ndarray:
+        """The running count of reversals whose back-travel exceeds ``min_excursion``: the
+        context's own count at its threshold, else counted along its position once."""
+        if min_excursion == self.min_excursion and self.reversals is not None:
+            return self.reversals
+        key = float(min_excursion)
+        if key not in self._counts:
+            self._counts[key] = significant_reversals(self.signal("position", effect), key)
+        return self._counts[key]
 
 
 @dataclass(frozen=True)
@@ -150,8 +163,9 @@ def _ripple(v, ctx):
 
 def _softening(v, ctx):
     # the contact wears in or work-hardens: κ(n) = 1 + h·(1 − e^{−n/n_c}) over the running
-    # count n of significant reversals (h < 0 softens, h > 0 hardens)
-    n = ctx.signal("reversals", "cyclic_softening")
+    # count n of significant reversals (h < 0 softens, h > 0 hardens); what counts as one is
+    # the effect's own min_excursion, as wear need not follow every small back-travel
+    n = ctx.reversals_above(v["min_excursion"], "cyclic_softening")
     return 1.0 + v["h"] * -np.expm1(-n / v["n_c"])
 
 
@@ -292,7 +306,8 @@ def context_of(time, position=None, load=None, min_excursion: float = 0.0) -> Co
         v[1:] = np.diff(x) / np.diff(t)
         rev = significant_reversals(x, min_excursion)
     return Context(time=t, position=None if position is None else np.asarray(position, dtype=np.float64),
-                   velocity=v, load=None if load is None else np.asarray(load, dtype=np.float64), reversals=rev)
+                   velocity=v, load=None if load is None else np.asarray(load, dtype=np.float64), reversals=rev,
+                   min_excursion=float(min_excursion))
 
 
 def _reversal_threshold(entries) -> float:

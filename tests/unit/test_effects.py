@@ -126,6 +126,23 @@ def test_significant_reversals_ignore_wiggles_below_the_threshold():
     assert significant_reversals(noisy, 0.0)[-1] > 50
 
 
+def test_a_softening_counts_only_the_reversals_past_its_own_threshold():
+    # four small cycles (back-travel 0.1) then three large ones (back-travel 1): a softening
+    # whose min_excursion is 0.5 has counted none of the small ones, whatever the context's own
+    # threshold; with n_c tiny the factor is 1 before its first counted reversal and 1 + h after
+    turns = [0.0, 0.1, 0.0, 0.1, 0.0, 0.1, 0.0, 0.1, 0.0, 1.0, 0.0, 1.0, 0.0]
+    x = np.concatenate([np.linspace(a, b, 50, endpoint=False) for a, b in zip(turns[:-1], turns[1:])])
+    t = np.arange(len(x), dtype=float)
+    ctx = Context(time=t, position=x, reversals=significant_reversals(x, 0.05), min_excursion=0.05)
+    assert ctx.reversals[-1] == 11
+    soft = EFFECTS["cyclic_softening"]
+    k = soft.scale({"h": -0.5, "n_c": 1e-9, "min_excursion": 0.5}, ctx)
+    first_big_turn = 9 * 50  # the turn at 1.0 (counted at the turning point itself)
+    assert np.all(k[:first_big_turn] == 1.0)
+    assert np.allclose(k[first_big_turn + 30:], 0.5)
+    assert ctx.reversals_above(0.5, "cyclic_softening")[-1] == 3
+
+
 def test_softening_factor_scales_the_presliding_stiffness(kuka):
     # after a reversal F_h follows F_b + F_d(κ·z) (eq. (4) with the stiffness factor): with
     # κ = 0.5 the force change over a small displacement is Table II's curve at half of it
