@@ -1306,10 +1306,9 @@ def _amplitude_names(name):
 
 
 def screen(engine: Engine, name: str, term: Term, prior: list, prior_u: np.ndarray, base_fit: FitResult,
-           mask: np.ndarray) -> tuple[np.ndarray, float] | None:
+           mask: np.ndarray) -> np.ndarray | None:
     """The best start for a candidate: for each shape value, the amplitudes by one secant
-    (Gauss-Newton) step from zero effect. Returns the full u vector for ``_fit`` and the
-    residual sum of squares the step leaves."""
+    (Gauss-Newton) step from zero effect. Returns the full u vector for ``_fit``."""
     meas = engine.c.measured
     r0 = (meas - base_fit.pred)[mask]
     best = None
@@ -1338,7 +1337,7 @@ def screen(engine: Engine, name: str, term: Term, prior: list, prior_u: np.ndarr
     if best is None:
         return None
     head = [math.log(base_fit.g)]
-    return np.concatenate([head, prior_u, best[1]]), best[0]
+    return np.concatenate([head, prior_u, best[1]])
 
 
 SOFTENING_THRESHOLDS = 6  # back-travels tried as a softening's reversal: min_excursion × 1, 2, 4, … 32
@@ -1365,18 +1364,22 @@ def softening_thresholds(cmp_: Comparison) -> list:
     return out or [cmp_.min_excursion]
 
 
-def screen_term(engine: Engine, name: str, cmp_: Comparison, strokes: SpeedOrder | None, prior: list,
-                prior_u: np.ndarray, base_fit: FitResult, mask: np.ndarray) -> tuple[Term, np.ndarray] | None:
-    """The candidate's term and its start (``screen``); a softening's reversal threshold is a
-    shape parameter as well, chosen among ``softening_thresholds`` by the screen's residual."""
+def fit_candidate(engine: Engine, name: str, cmp_: Comparison, strokes: SpeedOrder | None, alt: "Alternative",
+                  mask: np.ndarray, k0: float) -> tuple[Term, FitResult] | None:
+    """The candidate ``name`` fitted beside the alternative ``alt`` (``screen``, then ``_fit``):
+    its term and fit. A softening's reversal threshold is a shape parameter as well: each of
+    ``softening_thresholds`` is fitted, and the one leaving the least residual kept."""
     ths = softening_thresholds(cmp_) if name == "cyclic_softening" else [None]
     best = None
     for th in ths:
         term = _terms_for(name, cmp_, strokes, th)
-        got = screen(engine, name, term, prior, prior_u, base_fit, mask)
-        if got is not None and (best is None or got[1] < best[2]):
-            best = (term, got[0], got[1])
-    return None if best is None else best[:2]
+        u0 = screen(engine, name, term, alt.fit.entries, alt.u, alt.fit, mask)
+        if u0 is None:
+            continue
+        fr = _fit(engine, alt.terms + [term], u0, mask, fit_k0=alt.fit_k0, k0=k0)
+        if best is None or fr.rss < best[1].rss:
+            best = (term, fr)
+    return best
 
 
 # ---------------------------------------------------------------- cross-validation
@@ -2144,12 +2147,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
             alt = beside_rate if (beside_rate is not None and EFFECTS[name].acts_on == "stiffness") else plain
             rss_null = alt.fit.rss
-            got = screen_term(engine, name, cmp_, strokes, alt.fit.entries, alt.u, alt.fit, allm)
+            got = fit_candidate(engine, name, cmp_, strokes, alt, allm, k0)
             if got is None:
                 continue
-            term, u0 = got
+            term, fr = got
             terms = alt.terms + [term]
-            fr = _fit(engine, terms, u0, allm, fit_k0=alt.fit_k0, k0=k0)
             rms_c, rms_a = _rms((meas - fr.pred)[allm]), _rms((meas - alt.fit.pred)[allm])
             n_eff = _effective_n(meas - fr.pred)
             dbic = n_eff * math.log(max(fr.rss, 1e-300) / max(rss_null, 1e-300)) + len(term.free) * math.log(n_eff)
@@ -2328,9 +2330,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                                 if moved else ""))
         new_params = written_params.replace(
             effects=tuple(_clean_entry(e, cmp_) for e in final.entries), uncertainty=unc, provenance=prov)
-    ctx = cmp_.context()
+    # the reversals as the softening named counts them (its own back-travel), else the comparison's
+    th = next((e["params"]["min_excursion"] for e in final.entries if e["name"] == "cyclic_softening"), cmp_.min_excursion)
     explaining = {"time": ("time (s)", cmp_.time), "position": ("position", cmp_.path),
-                  "velocity": ("velocity", cmp_.velocity), "reversals": ("significant reversals", ctx.reversals)}
+                  "velocity": ("velocity", cmp_.velocity),
+                  "reversals": ("significant reversals", cmp_.context().reversals_above(th, "cyclic_softening"))}
     if cmp_.load is not None:
         explaining["load"] = ("normal load", cmp_.load)
     say(1.0, "done")
