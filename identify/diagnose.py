@@ -23,7 +23,8 @@ out-of-sample evidence, add it, refit, look again.
 3. **Candidates** (``model.effects.EFFECTS``): each is screened (its shape parameter — time
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
-   least squares through ``model.effects`` itself.
+   least squares through ``model.effects`` itself; a softening once for each back-travel that
+   may count as its reversal (``softening_thresholds``), the best kept (``fit_candidate``).
 4. **Out-of-sample decision.** Blocked cross-validation over time: the record is cut into
    ``folds·blocks_per_fold`` contiguous blocks, dealt round-robin to ``folds`` folds; the
    alternative and each candidate are refitted on the other folds and scored on the held-out
