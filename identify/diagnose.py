@@ -24,7 +24,8 @@ out-of-sample evidence, add it, refit, look again.
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
    least squares through ``model.effects`` itself; a softening once for each back-travel that
-   may count as its reversal (``softening_thresholds``), the best kept (``fit_candidate``).
+   may count as its reversal (``softening_thresholds``, ``fit_candidate``), the best written,
+   and chosen again on the training blocks of every fold of the cross-validation.
 4. **Out-of-sample decision.** Blocked cross-validation over time: the record is cut into
    ``folds·blocks_per_fold`` contiguous blocks, dealt round-robin to ``folds`` folds; the
    alternative and each candidate are refitted on the other folds and scored on the held-out
@@ -1366,21 +1367,20 @@ def softening_thresholds(cmp_: Comparison) -> list:
 
 
 def fit_candidate(engine: Engine, name: str, cmp_: Comparison, strokes: SpeedOrder | None, alt: "Alternative",
-                  mask: np.ndarray, k0: float) -> tuple[Term, FitResult] | None:
+                  mask: np.ndarray, k0: float) -> list:
     """The candidate ``name`` fitted beside the alternative ``alt`` (``screen``, then ``_fit``):
-    its term and fit. A softening's reversal threshold is a shape parameter as well: each of
-    ``softening_thresholds`` is fitted, and the one leaving the least residual kept."""
+    [(term, fit)], the least residual first. A softening's reversal threshold is a shape
+    parameter as well: it is fitted at each of ``softening_thresholds`` (the first is the one
+    written; the cross-validation chooses among them again in every fold)."""
     ths = softening_thresholds(cmp_) if name == "cyclic_softening" else [None]
-    best = None
+    out = []
     for th in ths:
         term = _terms_for(name, cmp_, strokes, th)
         u0 = screen(engine, name, term, alt.fit.entries, alt.u, alt.fit, mask)
         if u0 is None:
             continue
-        fr = _fit(engine, alt.terms + [term], u0, mask, fit_k0=alt.fit_k0, k0=k0)
-        if best is None or fr.rss < best[1].rss:
-            best = (term, fr)
-    return best
+        out.append((term, _fit(engine, alt.terms + [term], u0, mask, fit_k0=alt.fit_k0, k0=k0)))
+    return sorted(out, key=lambda o: o[1].rss)
 
 
 # ---------------------------------------------------------------- cross-validation
@@ -1395,6 +1395,13 @@ def fold_masks(n: int, folds: int, blocks_per_fold: int, windows=None) -> list:
             block[a:b] = orig[a]
     fold = block % folds
     return [fold == k for k in range(folds)]
+
+
+# the parameter whose zero is no effect, per candidate; one whose fit lies within AMPLITUDE_Z of
+# its folds' jackknife σ from zero is not named, whatever the held-out gain: that gain then comes
+# from what was refitted with it (the level, κ0, a stiffness varying with speed), not from the effect
+AMPLITUDE = {"time_drift": "b", "normal_load": "alpha", "position_ripple": "a", "cyclic_softening": "h"}
+AMPLITUDE_Z = 2.0
 
 
 @dataclass
@@ -1427,6 +1434,17 @@ class Evidence:
         return self.heldout_sse is not None
 
     @property
+    def amplitude_z(self) -> float | None:
+        """|amplitude| / its jackknife σ over the folds' refits (``AMPLITUDE``; ``jackknife_sd``):
+        how far the fit puts the effect from none, in its own spread — or None (no amplitude,
+        not cross-validated)."""
+        k = AMPLITUDE.get(self.name)
+        if k is None or not self.fold_entries or k not in self.params:
+            return None
+        sd = jackknife_sd(self.params[k], [f[-1]["params"][k] for f in self.fold_entries])
+        return abs(self.params[k]) / sd if sd > 0 else math.inf
+
+    @property
     def in_sample_gain(self) -> float:
         return float(1 - self.rms_in / self.rms_alt) if self.rms_alt else 0.0
 
@@ -1448,8 +1466,9 @@ class Evidence:
     def evident(self, s: Settings) -> bool:
         """Better held out in most informative folds, by ``min_gain`` pooled, and where its physics shows."""
         k = self.folds_informative
+        z = self.amplitude_z
         return bool(self.cross_validated and k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain
-                    and self.not_where_it_shows is None)
+                    and self.not_where_it_shows is None and (z is None or z >= AMPLITUDE_Z))
 
     def passes(self, s: Settings) -> bool:
         """Evident, and (``Settings.must_settle``) seen to settle within the session."""
@@ -1460,7 +1479,8 @@ class Evidence:
                 "rms_after": self.rms_in, "reduction": self.in_sample_gain, "cross_validated": self.cross_validated,
                 "heldout_gain": self.heldout_gain, "folds_improved": self.folds_improved,
                 "folds_informative": self.folds_informative, "delta_bic": self.delta_bic, "passes": self.passes(s),
-                "not_where_it_shows": self.not_where_it_shows, "where": self.where, "gain_where": self.gain_where,
+                "not_where_it_shows": self.not_where_it_shows, "amplitude_z": self.amplitude_z,
+                "where": self.where, "gain_where": self.gain_where,
                 "folds_where": self.folds_where, "beside": self.beside, "unsettled": self.unsettled,
                 "evident": self.evident(s),
                 "significant": False, "refitted": True}
@@ -1516,15 +1536,21 @@ CV_NFEV = 25  # least-squares steps of a fold's refit (it starts from the fit on
 CV_NFEV_STIFFNESS = 10  # … where κ0 and a stiffness varying with speed are refitted too (each step simulates)
 
 
-def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list, k0: float, fit_k0: bool = False) -> tuple:
+def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list, k0: float, fit_k0: bool = False,
+                   others: tuple = ()) -> tuple:
     """Held-out SSE per fold, the held-out predictions, and each fold's effect entries (fitted
-    on the other folds)."""
+    on the other folds). ``others``: further (terms, u_full) of the same candidate at other
+    values of a shape chosen from the data (a softening's reversal threshold); each fold
+    refits them all and keeps the one that fits its training blocks best, so the held-out
+    score pays for that choice as for any fitted parameter."""
     meas = engine.c.measured
     sse = np.zeros(len(masks))
     preds, entries = [], []
     nfev = (CV_NFEV_STIFFNESS if fit_k0 else CV_NFEV) if engine.c.space == "friction" else 5
     for i, held in enumerate(masks):
-        fr = _fit(engine, terms, u_full, ~held & engine.scored, fit_k0=fit_k0, k0=k0, max_nfev=nfev)
+        train = ~held & engine.scored
+        fits = [_fit(engine, tm, u, train, fit_k0=fit_k0, k0=k0, max_nfev=nfev) for tm, u in ((terms, u_full), *others)]
+        fr = min(fits, key=lambda f: engine.score((meas - f.pred)[train]))
         sse[i] = engine.score((meas - fr.pred)[held])
         preds.append(fr.pred)
         entries.append(fr.entries)
@@ -1680,6 +1706,9 @@ class Diagnosis:
             elif c.get("where"):
                 why = (f"  in {c['where']}: {-100 * c['gain_where']:+.1f} %, folds {c['folds_where']}"
                        + (" — not enough" if c.get("not_where_it_shows") else ""))
+            if c.get("amplitude_z") is not None and c["amplitude_z"] < AMPLITUDE_Z:
+                why += (f"  — its {AMPLITUDE[c['name']]} is {c['amplitude_z']:.1f} σ from none (the folds' "
+                        f"spread), under {AMPLITUDE_Z:g}: not told from no effect")
             if c.get("unsettled"):
                 why += f"  — {c['unsettled']}"
             beside = f"  (beside {c['beside']})" if c.get("beside") else ""
@@ -2148,10 +2177,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
             alt = beside_rate if (beside_rate is not None and EFFECTS[name].acts_on == "stiffness") else plain
             rss_null = alt.fit.rss
-            got = fit_candidate(engine, name, cmp_, strokes, alt, allm, k0)
-            if got is None:
+            options = fit_candidate(engine, name, cmp_, strokes, alt, allm, k0)
+            if not options:
                 continue
-            term, fr = got
+            term, fr = options[0]
             terms = alt.terms + [term]
             rms_c, rms_a = _rms((meas - fr.pred)[allm]), _rms((meas - alt.fit.pred)[allm])
             n_eff = _effective_n(meas - fr.pred)
@@ -2163,7 +2192,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                                      fr, against=alt, rms_alt=rms_a))
                 continue
             null_sse, null_preds = alt.held_out(engine, masks, k0)
-            _, preds, fold_entries = cross_validate(engine, terms, fr.u, masks, k0, fit_k0=alt.fit_k0)
+            _, preds, fold_entries = cross_validate(engine, terms, fr.u, masks, k0, fit_k0=alt.fit_k0,
+                                                    others=tuple((alt.terms + [t], f.u) for t, f in options[1:]))
             sse = np.array([engine.score((meas - preds[i])[m]) for i, m in enumerate(masks)])
             # a fold where the candidate hardly changes the held-out prediction says nothing
             informative = np.array([np.sum((preds[i] - null_preds[i])[m] ** 2) > INFORMATIVE * max(null_sse[i], 1e-300)
