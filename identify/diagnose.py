@@ -23,9 +23,10 @@ out-of-sample evidence, add it, refit, look again.
 3. **Candidates** (``model.effects.EFFECTS``): each is screened (its shape parameter — time
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
-   least squares through ``model.effects`` itself; a softening once for each back-travel that
-   may count as its reversal (``softening_thresholds``, ``fit_candidate``), the best written,
-   and chosen again on the training blocks of every fold of the cross-validation.
+   least squares through ``model.effects`` itself; with ``Settings.softening_thresholds`` above
+   1, a softening once for each back-travel that may count as its reversal
+   (``softening_thresholds``, ``fit_candidate``), the best written, and chosen again on the
+   training blocks of every fold of the cross-validation.
 4. **Out-of-sample decision.** Blocked cross-validation over time: the record is cut into
    ``folds·blocks_per_fold`` contiguous blocks, dealt round-robin to ``folds`` folds; the
    alternative and each candidate are refitted on the other folds and scored on the held-out
@@ -94,6 +95,10 @@ class Settings:
     refit_curve: bool = True  # the alternative reshapes a piecewise-linear F_d segment by segment (refit_transition)
     space: str = "friction"  # "position": a force-driven recording compared by output error in position
     must_settle: bool = True  # an effect with a saturation scale is named only if seen to settle (``Term.unsettled``)
+    # back-travels tried as a softening's reversal: min_excursion × 1, 2, 4 … (``softening_thresholds``);
+    # 1 (the default) tries min_excursion alone: with 6, two of the six controls of fresh seeds
+    # (7000-) named a false softening, against one with 1 (README)
+    softening_thresholds: int = 1
     candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
 
 
@@ -1342,19 +1347,19 @@ def screen(engine: Engine, name: str, term: Term, prior: list, prior_u: np.ndarr
     return np.concatenate([head, prior_u, best[1]])
 
 
-SOFTENING_THRESHOLDS = 6  # back-travels tried as a softening's reversal: min_excursion × 1, 2, 4, … 32
 SOFTENING_MIN_COUNT = 6  # … each counting at least this many reversals (n_c ≥ 3 must be seen settling)
 
 
-def softening_thresholds(cmp_: Comparison) -> list:
+def softening_thresholds(cmp_: Comparison, tries: int = 1) -> list:
     """The back-travels a softening's reversal is tried with, from the comparison's
     ``min_excursion`` (a quarter of the presliding range, or the position's noise) up by
-    factors of 2 while they still count SOFTENING_MIN_COUNT reversals; one counting the
+    factors of 2, ``tries`` of them at most (``Settings.softening_thresholds``), while they
+    still count SOFTENING_MIN_COUNT reversals; one counting the
     same reversals as a smaller one is left out. What wears a contact in need not be every
     back-travel past the presliding range: a session whose presliding tests make many small
     cycles early would, counted that way, show the change late and never settle."""
     out, seen = [], None
-    for k in range(SOFTENING_THRESHOLDS):
+    for k in range(tries):
         th = cmp_.min_excursion * 2.0**k
         count = significant_reversals(cmp_.path, th)
         if count[-1] < SOFTENING_MIN_COUNT:
@@ -1367,12 +1372,12 @@ def softening_thresholds(cmp_: Comparison) -> list:
 
 
 def fit_candidate(engine: Engine, name: str, cmp_: Comparison, strokes: SpeedOrder | None, alt: "Alternative",
-                  mask: np.ndarray, k0: float) -> list:
+                  mask: np.ndarray, k0: float, tries: int = 1) -> list:
     """The candidate ``name`` fitted beside the alternative ``alt`` (``screen``, then ``_fit``):
     [(term, fit)], the least residual first. A softening's reversal threshold is a shape
     parameter as well: it is fitted at each of ``softening_thresholds`` (the first is the one
     written; the cross-validation chooses among them again in every fold)."""
-    ths = softening_thresholds(cmp_) if name == "cyclic_softening" else [None]
+    ths = softening_thresholds(cmp_, tries) if name == "cyclic_softening" else [None]
     out = []
     for th in ths:
         term = _terms_for(name, cmp_, strokes, th)
@@ -2177,7 +2182,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
             alt = beside_rate if (beside_rate is not None and EFFECTS[name].acts_on == "stiffness") else plain
             rss_null = alt.fit.rss
-            options = fit_candidate(engine, name, cmp_, strokes, alt, allm, k0)
+            options = fit_candidate(engine, name, cmp_, strokes, alt, allm, k0, s.softening_thresholds)
             if not options:
                 continue
             term, fr = options[0]
