@@ -1402,13 +1402,6 @@ def fold_masks(n: int, folds: int, blocks_per_fold: int, windows=None) -> list:
     return [fold == k for k in range(folds)]
 
 
-# the parameter whose zero is no effect, per candidate; one whose fit lies within AMPLITUDE_Z of
-# its folds' jackknife σ from zero is not named, whatever the held-out gain: that gain then comes
-# from what was refitted with it (the level, κ0, a stiffness varying with speed), not from the effect
-AMPLITUDE = {"time_drift": "b", "normal_load": "alpha", "position_ripple": "a", "cyclic_softening": "h"}
-AMPLITUDE_Z = 2.0
-
-
 @dataclass
 class Evidence:
     name: str
@@ -1439,17 +1432,6 @@ class Evidence:
         return self.heldout_sse is not None
 
     @property
-    def amplitude_z(self) -> float | None:
-        """|amplitude| / its jackknife σ over the folds' refits (``AMPLITUDE``; ``jackknife_sd``):
-        how far the fit puts the effect from none, in its own spread — or None (no amplitude,
-        not cross-validated)."""
-        k = AMPLITUDE.get(self.name)
-        if k is None or not self.fold_entries or k not in self.params:
-            return None
-        sd = jackknife_sd(self.params[k], [f[-1]["params"][k] for f in self.fold_entries])
-        return abs(self.params[k]) / sd if sd > 0 else math.inf
-
-    @property
     def in_sample_gain(self) -> float:
         return float(1 - self.rms_in / self.rms_alt) if self.rms_alt else 0.0
 
@@ -1471,9 +1453,8 @@ class Evidence:
     def evident(self, s: Settings) -> bool:
         """Better held out in most informative folds, by ``min_gain`` pooled, and where its physics shows."""
         k = self.folds_informative
-        z = self.amplitude_z
         return bool(self.cross_validated and k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain
-                    and self.not_where_it_shows is None and (z is None or z >= AMPLITUDE_Z))
+                    and self.not_where_it_shows is None)
 
     def passes(self, s: Settings) -> bool:
         """Evident, and (``Settings.must_settle``) seen to settle within the session."""
@@ -1484,8 +1465,7 @@ class Evidence:
                 "rms_after": self.rms_in, "reduction": self.in_sample_gain, "cross_validated": self.cross_validated,
                 "heldout_gain": self.heldout_gain, "folds_improved": self.folds_improved,
                 "folds_informative": self.folds_informative, "delta_bic": self.delta_bic, "passes": self.passes(s),
-                "not_where_it_shows": self.not_where_it_shows, "amplitude_z": self.amplitude_z,
-                "where": self.where, "gain_where": self.gain_where,
+                "not_where_it_shows": self.not_where_it_shows, "where": self.where, "gain_where": self.gain_where,
                 "folds_where": self.folds_where, "beside": self.beside, "unsettled": self.unsettled,
                 "evident": self.evident(s),
                 "significant": False, "refitted": True}
@@ -1711,9 +1691,6 @@ class Diagnosis:
             elif c.get("where"):
                 why = (f"  in {c['where']}: {-100 * c['gain_where']:+.1f} %, folds {c['folds_where']}"
                        + (" — not enough" if c.get("not_where_it_shows") else ""))
-            if c.get("amplitude_z") is not None and c["amplitude_z"] < AMPLITUDE_Z:
-                why += (f"  — its {AMPLITUDE[c['name']]} is {c['amplitude_z']:.1f} σ from none (the folds' "
-                        f"spread), under {AMPLITUDE_Z:g}: not told from no effect")
             if c.get("unsettled"):
                 why += f"  — {c['unsettled']}"
             beside = f"  (beside {c['beside']})" if c.get("beside") else ""

@@ -666,27 +666,3 @@ def test_median_stroke_is_the_stroke_that_carries_the_travel_not_a_controllers_d
     t = np.arange(len(x)) * 1e-3
     c = _cmp(t, x, np.gradient(x, t), z_pres=0.01)
     assert abs(median_stroke(c) - 0.2) < 0.01
-
-
-def test_an_effect_within_two_sigma_of_none_is_not_named_whatever_its_held_out_gain():
-    # a softening that lowers the held-out error in every fold by 10 %, once with h = -0.30 and
-    # folds that agree (-0.29 … -0.31), once with h = -0.008 and folds that straddle it
-    # (-0.02 … +0.004): σ over 5 folds is the jackknife √(4/5·Σ(h_i − h̄)²), written out here
-    from leuven_friction.identify.diagnose import AMPLITUDE_Z, Evidence, Settings
-
-    def evidence(h, folds):
-        entry = lambda v: [{"name": "cyclic_softening", "params": {"h": v, "n_c": 5.0, "min_excursion": 1e-6}}]
-        ev = Evidence("cyclic_softening", {"h": h, "n_c": 5.0, "min_excursion": 1e-6}, 0.9,
-                      np.full(5, 0.81), np.full(5, 1.0), np.ones(5, bool), -50.0,
-                      fold_entries=[entry(v) for v in folds])
-        return ev
-
-    agree = [-0.29, -0.30, -0.31, -0.30, -0.30]
-    straddle = [-0.02, 0.004, -0.012, -0.002, -0.01]
-    for h, folds, named in ((-0.30, agree, True), (-0.008, straddle, False)):
-        d = np.asarray(folds) - h
-        sd = math.sqrt(4 / 5 * np.sum((d - d.mean()) ** 2))
-        ev = evidence(h, folds)
-        assert ev.amplitude_z == pytest.approx(abs(h) / sd)
-        assert ev.heldout_gain == pytest.approx(0.1) and ev.folds_improved == 5
-        assert ev.evident(Settings()) is named, (h, ev.amplitude_z, AMPLITUDE_Z)
