@@ -666,3 +666,21 @@ def test_median_stroke_is_the_stroke_that_carries_the_travel_not_a_controllers_d
     t = np.arange(len(x)) * 1e-3
     c = _cmp(t, x, np.gradient(x, t), z_pres=0.01)
     assert abs(median_stroke(c) - 0.2) < 0.01
+
+
+def test_softening_thresholds_double_while_six_reversals_remain_and_skip_equal_counts():
+    # five small cycles (back-travel 0.15) then four large ones (1.0): 17 turning points, all
+    # counted at 0.1; at 0.2 only the 7 of the large strokes — at 0.4 and 0.8 the very same
+    # reversals, left out — and at 1.6 none, where the doubling stops
+    from types import SimpleNamespace
+
+    from leuven_friction.identify.diagnose import softening_thresholds
+    from leuven_friction.model.effects import significant_reversals
+
+    turns = [0.0, 0.15] * 5 + [0.0, 1.0] * 4 + [0.0]
+    x = np.concatenate([np.linspace(a, b, 40, endpoint=False) for a, b in zip(turns[:-1], turns[1:])])
+    assert [significant_reversals(x, th)[-1] for th in (0.1, 0.2, 0.4, 0.8, 1.6)] == [17, 7, 7, 7, 0]
+    c = SimpleNamespace(min_excursion=0.1, path=x)
+    assert softening_thresholds(c, 1) == [0.1]
+    assert softening_thresholds(c, 6) == [0.1, 0.2]
+    assert softening_thresholds(SimpleNamespace(min_excursion=2.0, path=x), 6) == [2.0]  # none counts: the base kept
