@@ -1347,7 +1347,7 @@ def screen(engine: Engine, name: str, term: Term, prior: list, prior_u: np.ndarr
     return np.concatenate([head, prior_u, best[1]])
 
 
-SOFTENING_MIN_COUNT = 6  # … each counting at least this many reversals (n_c ≥ 3 must be seen settling)
+SOFTENING_MIN_COUNT = 6  # a softening threshold tried must count this many reversals (n_c ≥ 3 must be seen settling)
 
 
 def softening_thresholds(cmp_: Comparison, tries: int = 1) -> list:
@@ -1358,6 +1358,8 @@ def softening_thresholds(cmp_: Comparison, tries: int = 1) -> list:
     same reversals as a smaller one is left out. What wears a contact in need not be every
     back-travel past the presliding range: a session whose presliding tests make many small
     cycles early would, counted that way, show the change late and never settle."""
+    if tries <= 1:
+        return [cmp_.min_excursion]
     out, seen = [], None
     for k in range(tries):
         th = cmp_.min_excursion * 2.0**k
@@ -2347,7 +2349,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     th = next((e["params"]["min_excursion"] for e in final.entries if e["name"] == "cyclic_softening"), cmp_.min_excursion)
     explaining = {"time": ("time (s)", cmp_.time), "position": ("position", cmp_.path),
                   "velocity": ("velocity", cmp_.velocity),
-                  "reversals": ("significant reversals", cmp_.context().reversals_above(th, "cyclic_softening"))}
+                  "reversals": ("significant reversals", significant_reversals(cmp_.path, th))}
     if cmp_.load is not None:
         explaining["load"] = ("normal load", cmp_.load)
     say(1.0, "done")

@@ -82,7 +82,7 @@ class Context:
     reversals: np.ndarray | None = None  # running count of significant reversals above ``min_excursion``
     min_excursion: float = 0.0
     # counts above other thresholds, made once per context (a softening's own min_excursion)
-    _counts: dict = field(default_factory=dict, repr=False, compare=False)
+    _counts: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def signal(self, name: str, effect: str) -> np.ndarray:
         a = getattr(self, name)
