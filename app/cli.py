@@ -181,6 +181,9 @@ def cmd_diagnose(args) -> int:
     from ..identify.paramfile import params_to_yaml
     from .outputs import Outputs
 
+    if args.softening_thresholds is not None and args.softening_thresholds < 1:
+        raise UserError(f"--softening-thresholds {args.softening_thresholds}: must be at least 1 (1 tries the "
+                        f"smallest significant back-travel alone)")
     outputs = Outputs({"--json": args.json, "--html": args.html, "--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
     rec = load_recording(_recording(args.data), columns=cols, require=("time", "position"))
@@ -195,8 +198,10 @@ def cmd_diagnose(args) -> int:
     try:
         from ..identify.diagnose import Settings
 
-        d = diagnose(rec, params, progress=_progress, settings=Settings(space=args.space,
-                                                                       must_settle=args.require_settling))
+        chosen = {"space": args.space, "must_settle": args.require_settling}
+        if args.softening_thresholds is not None:
+            chosen["softening_thresholds"] = args.softening_thresholds
+        d = diagnose(rec, params, progress=_progress, settings=Settings(**chosen))
     except FrictionError as e:
         print(file=sys.stderr)
         raise UserError(f"diagnose: {e}") from None
@@ -413,6 +418,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "saturation scale at a bound, e.g. a softening's n_c), since a trend along the session's schedule "
                         "would look the same: report it as seen, not named (the default). --no-require-settling "
                         "names it, with that caveat")
+    d.add_argument("--softening-thresholds", type=int, metavar="K",
+                   help="back-travels tried as what counts as a softening's reversal: the smallest significant "
+                        "one × 1, 2, 4 … (K of them while 6 reversals remain; the one that fits best is written; "
+                        "by default 6; 1 tries the smallest alone)")
     d.set_defaults(func=cmd_diagnose)
 
     sm = sub.add_parser("samples", help="list the sample recordings shipped with the package, or copy them out")

@@ -23,9 +23,9 @@ out-of-sample evidence, add it, refit, look again.
 3. **Candidates** (``model.effects.EFFECTS``): each is screened (its shape parameter — time
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
-   least squares through ``model.effects`` itself; with ``Settings.softening_thresholds`` above
-   1, a softening once for each back-travel that may count as its reversal
-   (``softening_thresholds``, ``fit_candidate``), the best written, and chosen again on the
+   least squares through ``model.effects`` itself; a softening once for each back-travel that
+   may count as its reversal (``Settings.softening_thresholds``, 6 by default;
+   ``softening_thresholds``, ``fit_candidate``), the best written, and chosen again on the
    training blocks of every fold of the cross-validation.
 4. **Out-of-sample decision.** Blocked cross-validation over time: the record is cut into
    ``folds·blocks_per_fold`` contiguous blocks, dealt round-robin to ``folds`` folds; the
@@ -52,7 +52,10 @@ out-of-sample evidence, add it, refit, look again.
    gap after every step is kept. The model written (``written_fits``) is, at every step, the
    model as given with n, σ1, the S(v) levels, the curve's segments, g, κ0 and that step's
    effects refitted to the recording alone, without the free steady curve (beside a free
-   inertia for friction taken from an applied force, which is not written).
+   inertia for friction taken from an applied force, which is not written). An effect named
+   last that removes under half of ``min_gain`` of that model's gap (``own_gain``: its
+   amplitudes at no effect, ``Effect.without``, everything else as fitted) is not named: what
+   it explained beside the free curve, the refitted base explains (``Diagnosis.unused``).
 """
 
 from __future__ import annotations
@@ -95,10 +98,11 @@ class Settings:
     refit_curve: bool = True  # the alternative reshapes a piecewise-linear F_d segment by segment (refit_transition)
     space: str = "friction"  # "position": a force-driven recording compared by output error in position
     must_settle: bool = True  # an effect with a saturation scale is named only if seen to settle (``Term.unsettled``)
-    # back-travels tried as a softening's reversal: min_excursion × 1, 2, 4 … (``softening_thresholds``);
-    # 1 (the default) tries min_excursion alone: with 6, two of the six controls of fresh seeds
-    # (7000-) named a false softening, against one with 1 (README)
-    softening_thresholds: int = 1
+    # back-travels tried as a softening's reversal: min_excursion × 1, 2, 4 … 32 (``softening_thresholds``);
+    # 1 tries min_excursion alone. 6 is the default since an effect the model written does not use is
+    # not named (``own_gain``): before, a false softening on a fresh control (linear stage 7010) came
+    # with it (README)
+    softening_thresholds: int = 6
     candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
 
 
@@ -1511,6 +1515,17 @@ def rate_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, k0: f
     return Alternative(fr, terms, fr.u[1:], "a stiffness varying with speed", fit_k0=True)
 
 
+def own_gain(engine: Engine, fit: FitResult, mask: np.ndarray) -> float:
+    """What the last effect of ``fit`` does itself: 1 − the fit's RMS gap over the gap with that
+    effect's amplitudes at no effect (``Effect.without``), everything else as fitted (the
+    engine's nuisance solved again). The base the engine holds must be the fit's own."""
+    *rest, last = fit.entries
+    off = rest + [{"name": last["name"], "params": EFFECTS[last["name"]].without(last["params"])}]
+    without = fit_result(engine, fit.g, fit.k0, off, fit.u, mask)
+    with_ = float(np.sum((engine.c.measured - fit.pred)[mask] ** 2))
+    return float(1.0 - math.sqrt(with_ / max(without.rss, 1e-300)))
+
+
 def _effective_n(resid: np.ndarray) -> float:
     r = resid - resid.mean()
     rho = float(np.dot(r[1:], r[:-1]) / max(np.dot(r, r), 1e-300))
@@ -1601,6 +1616,8 @@ class Diagnosis:
     scored_predictions: list = field(repr=False, default_factory=list)  # with the free steady curve
     compared: np.ndarray = field(repr=False, default=None)  # the samples compared (``initial_memory``)
     explaining: dict = field(repr=False, default_factory=dict)
+    # effects that passed held out but that the model written does not use: [{name, own_gain}]
+    unused: list = field(default_factory=list)
 
     # the first named effect, for callers that show one
     @property
@@ -1625,7 +1642,8 @@ class Diagnosis:
         effect seen that is not seen to settle within the session (with ``Settings.must_settle``) and
         pairs of effects confounded with each other."""
         return ([f"{c['name']} seen, not named (its change is not seen to settle within the session)" for c in self.unsettled]
-                + [f"{c['effects'][0]} and {c['effects'][1]} confounded" for c in self.confounded])
+                + [f"{c['effects'][0]} and {c['effects'][1]} confounded" for c in self.confounded]
+                + [f"{c['name']} passed, not named (the model written does not use it)" for c in self.unused])
 
     @property
     def effect_params(self) -> dict | None:
@@ -1637,7 +1655,7 @@ class Diagnosis:
             "effects": list(self.effects), "effect": self.effect, "effect_params": self.effect_params,
             "space": self.space, "noise": self.noise, "rms_before": self.rms_before, "rms_after": self.rms_after,
             "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
-            "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled],
+            "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
             "candidates": self.candidates, "notes": list(self.notes),
             "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
                          "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr,
@@ -1652,11 +1670,17 @@ class Diagnosis:
         elif self.unsettled:
             L.append("No missing effect named: what improves the held-out prediction is not seen to settle within the "
                      "session (required here).")
+        elif self.unused:
+            L.append("No missing effect named: what improved the held-out prediction is not used by the model written.")
         else:
             L.append("No missing effect named: nothing improves the held-out prediction in most folds.")
         for c in self.unsettled:
             L.append(f"Seen, not named: {c['name']} improves the held-out prediction by {100 * c['heldout_gain']:.1f} % "
                      f"(folds {c['folds_improved']}/{c['folds_informative']}), but {c['unsettled']}.")
+        for c in self.unused:
+            L.append(f"Passed, not named: {c['name']} improved the held-out prediction beside a free steady curve, but "
+                     f"in the model written (n, σ1 and S(v) refitted with it) it removes only {100 * c['own_gain']:.1f} % "
+                     f"of the gap that model leaves with its amplitude at no effect.")
         for c in self.confounded:
             a, b = c["effects"]
             L.append(f"Confounded: {a} and {b} explain the same part of the residual "
@@ -2265,6 +2289,20 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # on that curve (its free inertia, its level at rest)
     written = written_fits(engine, params.replace(effects=()), fits, refit_curve=refit_curve,
                            start=alone.u if len(alone.u) else None)
+    # an effect named last that the model written does not use is not named: refitted with n,
+    # σ1, S(v) and the curve, those took up what it explained beside the free steady curve (on a
+    # clean linear stage a softening's h went from −0.07 in the decision to −0.008 written)
+    unused = []
+    while named and (own := own_gain(engine, written[-1][0], allm)) < PRESCREEN * s.min_gain:
+        gone = named.pop()
+        unused.append({"name": gone, "own_gain": own})
+        cmp_.notes.append(f"{gone} is not named: in the model written it removes under {PRESCREEN * s.min_gain:.1%} "
+                          f"of the gap left with it switched off; the model written is the step before's")
+        steps.pop()
+        scored.pop()
+        written.pop()
+        sds.pop(gone, None)
+        engine.set_base(written[-1][1])
     (null, *_), (final, final_base, final_reid, reidentified) = written[0], written[-1]
     for st, (wf, *_) in zip(steps[1:], written):
         st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant (and inertia)
@@ -2357,7 +2395,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      rms_after=_rms((meas - final.pred)[allm]), rms_base_refit=_rms((meas - null.pred)[allm]), regimes=regimes,
                      space=cmp_.space, noise=cmp_.noise, notes=cmp_.notes, params_before=params,
                      params_after=new_params, settings=s, time=cmp_.time, measured=meas, model_before=pred_given_c,
-                     model_after=final.pred, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining)
+                     model_after=final.pred, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining,
+                     unused=unused)
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written

@@ -110,6 +110,7 @@ class Effect:
     needs: tuple[str, ...]  # Context signals the factor depends on
     factor: Callable[[Mapping[str, float], Context], np.ndarray] = field(repr=False)
     separated_by: str = ""  # the experiment that isolates this effect from others
+    neutral: Mapping[str, float] = field(default_factory=dict)  # values of its amplitudes at which it does nothing
 
     @property
     def param_names(self) -> tuple[str, ...]:
@@ -117,6 +118,10 @@ class Effect:
 
     def scale(self, values: Mapping[str, float], ctx: Context) -> np.ndarray:
         return np.broadcast_to(np.asarray(self.factor(values, ctx), dtype=np.float64), ctx.time.shape)
+
+    def without(self, values: Mapping[str, float]) -> dict:
+        """``values`` with the effect's amplitudes at ``neutral``: its shape kept, its factor 1."""
+        return {**values, **self.neutral}
 
     def validate(self, values, path: str) -> dict:
         if not isinstance(values, Mapping):
@@ -192,11 +197,13 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
            (EffectParam("b", "1", -0.95, 20.0, "relative change of friction once settled"),
             EffectParam("tau", "time", 0.0, 1e12, "time constant of the approach", lo_open=True),
             EffectParam("t0", "time", -1e12, 1e12, "start of the approach")),
-           ("time",), _drift, "repeat one test at fixed load and position after the machine has warmed up"),
+           ("time",), _drift, "repeat one test at fixed load and position after the machine has warmed up",
+           {"b": 0.0}),
     Effect("normal_load", "friction scales with the normal load as (N/N0)^α", "friction",
            (EffectParam("alpha", "1", 0.0, 3.0, "load exponent (1: Coulomb's law)"),
             EffectParam("N0", "load", 0.0, 1e12, "reference load at which the base model holds", lo_open=True)),
-           ("load",), _load, "vary the load up and down at a fixed temperature (not on a monotone schedule)"),
+           ("load",), _load, "vary the load up and down at a fixed temperature (not on a monotone schedule)",
+           {"alpha": 0.0}),
     Effect("position_ripple", "friction varies periodically with position (gear teeth, ball circulation, "
            "a wavy guide)", "friction",
            (EffectParam("a", "1", 0.0, 0.95, "relative amplitude"),
@@ -204,13 +211,15 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
             EffectParam("phase", "rad", -1e3, 1e3, "phase at position 0"),
             EffectParam("a2", "1", 0.0, 0.5, "relative amplitude of the second harmonic", default=0.0),
             EffectParam("phase2", "rad", -1e3, 1e3, "phase of the second harmonic at position 0", default=0.0)),
-           ("position",), _ripple, "move over the same positions at different times and speeds"),
+           ("position",), _ripple, "move over the same positions at different times and speeds",
+           {"a": 0.0, "a2": 0.0}),
     Effect("cyclic_softening", "the presliding spring softens (h < 0) or hardens (h > 0) with the number of "
            "significant reversals, saturating", "stiffness",
            (EffectParam("h", "1", -0.95, 20.0, "relative stiffness change once saturated"),
             EffectParam("n_c", "reversals", 0.0, 1e12, "reversals to reach 63 % of the change", lo_open=True),
             EffectParam("min_excursion", "position", 0.0, 1e12, "smallest back-travel counted as a reversal")),
-           ("reversals",), _softening, "alternate presliding cycles with long rests (time) at a fixed load"),
+           ("reversals",), _softening, "alternate presliding cycles with long rests (time) at a fixed load",
+           {"h": 0.0}),
     Effect("rate_stiffness", "the presliding spring's stiffness varies smoothly with the sliding speed, "
            "κ = exp(c1·ℓ + c2·ℓ²) with ℓ = ln(|v|/v_ref)", "stiffness",
            (EffectParam("c1", "1", -2.0, 2.0, "slope of ln κ against ln|v|"),
@@ -218,11 +227,11 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
             EffectParam("v_ref", "velocity", 0.0, 1e12, "speed at which κ = 1", lo_open=True),
             EffectParam("v_floor", "velocity", 0.0, 1e12, "speeds below this count as this (rest)", lo_open=True)),
            ("velocity",), _rate_stiffness, "presliding cycles of one amplitude at several speeds, the slow ones "
-           "repeated at the session's end"),
+           "repeated at the session's end", {"c1": 0.0, "c2": 0.0}),
     Effect("presliding_stiffness", "the presliding spring is uniformly stiffer (κ > 1) or softer than the "
            "transition curve", "stiffness",
            (EffectParam("kappa", "1", 0.01, 100.0, "stiffness factor"),),
-           (), _stiffness, "presliding cycles of several amplitudes"),
+           (), _stiffness, "presliding cycles of several amplitudes", {"kappa": 1.0}),
 )}
 
 

@@ -57,6 +57,12 @@ def test_output_in_a_missing_directory_is_refused_before_the_work(tmp_path, caps
     assert os.listdir(tmp_path) == []  # in particular no ok.json beside the refused report
 
 
+def test_softening_thresholds_below_one_is_refused_before_the_work(tmp_path, capsys):
+    rc, _, err = run(capsys, "diagnose", SAMPLE, "--softening-thresholds", "0", "--json", tmp_path / "r.json")
+    assert rc == 2 and one_line(err).startswith("error: --softening-thresholds 0: must be at least 1")
+    assert os.listdir(tmp_path) == []
+
+
 def test_output_that_is_read_only_or_a_directory(tmp_path, capsys):
     ro = tmp_path / "ro.yaml"
     ro.write_text("keep me")

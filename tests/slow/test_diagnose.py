@@ -245,6 +245,25 @@ def test_a_stiffness_that_follows_the_speed_is_not_credited_to_softening():
     assert "cyclic_softening" not in d.effects, d.text()
 
 
+def test_an_effect_the_model_written_does_not_use_is_not_named():
+    # a clean linear stage (no effect imposed) on which a softening, its reversal threshold
+    # chosen among three, passes held out beside the free steady curve; the model written,
+    # refitted with n, σ1 and S(v), leaves its amplitude near zero. It must not be named, the
+    # parameter file stays as it was, and the report says why
+    from leuven_friction.identify.diagnose import PRESCREEN, Settings
+    from synth.hidden import SUITE_RATE
+
+    df, truth, case = make_case("linear_stage", 7010, (), rate=SUITE_RATE["linear_stage"])
+    base = oracle_params(truth)
+    s = Settings(softening_thresholds=3)
+    d = diagnose(to_recording(df, "clean.csv"), base, settings=s)
+    assert d.effects == [] and d.params_after is base, d.text()
+    assert [c["name"] for c in d.unused] == ["cyclic_softening"], d.text()
+    assert d.unused[0]["own_gain"] < PRESCREEN * s.min_gain
+    assert "Passed, not named: cyclic_softening" in d.text()
+    assert len(d.steps) == 2  # the model as given and the alternative: no step of the effect left
+
+
 def _stiffness_falling_in_time(kind, seed):
     """A recording whose presliding spring loses 40 % of its stiffness in proportion to the time
     run (wear through the whole session, never settling), and the generator's own base."""

@@ -21,6 +21,28 @@ def test_every_effect_declares_units_bounds_and_how_it_acts():
         assert e.separated_by
 
 
+def test_every_effect_without_its_amplitudes_is_a_factor_of_one_and_with_them_is_not():
+    # the diagnosis asks what a named effect does itself by switching it off (``Effect.without``):
+    # that must leave exactly no effect, whatever its shape values, along a motion that
+    # reverses, drifts in time and moves its load
+    t = np.linspace(0.0, 50.0, 2001)
+    x = 0.02 * np.sin(2 * np.pi * t / 7.0) + 0.001 * t
+    ctx = Context(time=t, position=x, velocity=np.gradient(x, t), load=100.0 + 30.0 * np.sin(t / 3.0),
+                  reversals=significant_reversals(x, 1e-4), min_excursion=1e-4)
+    values = {"time_drift": {"b": 0.3, "tau": 8.0, "t0": 0.0}, "normal_load": {"alpha": 0.8, "N0": 90.0},
+              "position_ripple": {"a": 0.1, "wavelength": 0.013, "phase": 0.4, "a2": 0.03, "phase2": 1.0},
+              "cyclic_softening": {"h": -0.4, "n_c": 3.0, "min_excursion": 1e-4},
+              "rate_stiffness": {"c1": 0.2, "c2": -0.05, "v_ref": 0.01, "v_floor": 1e-4},
+              "presliding_stiffness": {"kappa": 1.7}}
+    assert set(values) == set(EFFECTS)
+    for name, v in values.items():
+        e = EFFECTS[name]
+        assert np.ptp(e.scale(v, ctx)) > 0.01 or abs(e.scale(v, ctx)[0] - 1.0) > 0.01, name
+        off = e.without(v)
+        assert np.all(e.scale(off, ctx) == 1.0), name
+        assert {k: off[k] for k in v if k not in e.neutral} == {k: v[k] for k in v if k not in e.neutral}
+
+
 def test_rate_stiffness_is_a_power_of_the_speed_above_its_floor_and_capped():
     # c2 = 0: κ = (|v|/v_ref)^c1 — 1 at the reference speed, √2 at twice it (either sign of v),
     # the floor's value at rest, and at most e³ (a factor 20, the span of a stiffness factor)
