@@ -24,7 +24,7 @@ out-of-sample evidence, add it, refit, look again.
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
    least squares through ``model.effects`` itself; a softening once for each back-travel that
-   may count as its reversal (``Settings.softening_thresholds``, 6 by default;
+   may count as its reversal (``Settings.softening_thresholds``, 1 by default;
    ``softening_thresholds``, ``fit_candidate``), the best written, and chosen again on the
    training blocks of every fold of the cross-validation.
 4. **Out-of-sample decision.** Blocked cross-validation over time: the record is cut into
@@ -98,11 +98,11 @@ class Settings:
     refit_curve: bool = True  # the alternative reshapes a piecewise-linear F_d segment by segment (refit_transition)
     space: str = "friction"  # "position": a force-driven recording compared by output error in position
     must_settle: bool = True  # an effect with a saturation scale is named only if seen to settle (``Term.unsettled``)
-    # back-travels tried as a softening's reversal: min_excursion × 1, 2, 4 … 32 (``softening_thresholds``);
-    # 1 tries min_excursion alone. 6 is the default since an effect the model written does not use is
-    # not named (``own_gain``): before, a false softening on a fresh control (linear stage 7010) came
-    # with it (README)
-    softening_thresholds: int = 6
+    # back-travels tried as a softening's reversal: min_excursion × 1, 2, 4 … (``softening_thresholds``);
+    # 1 (the default) tries min_excursion alone. 6 names more of the suite's effects right, and since
+    # an effect the model written does not use is not named (``own_gain``) no more false ones, but it
+    # takes the 100,000-sample robot joint of the speed benchmark to 35-38 s, over the 30 s target (README)
+    softening_thresholds: int = 1
     candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
 
 
