@@ -1515,15 +1515,15 @@ def rate_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, k0: f
     return Alternative(fr, terms, fr.u[1:], "a stiffness varying with speed", fit_k0=True)
 
 
-def own_gain(engine: Engine, fit: FitResult, mask: np.ndarray) -> float:
-    """What the last effect of ``fit`` does itself: 1 − the fit's RMS gap over the gap with that
-    effect's amplitudes at no effect (``Effect.without``), everything else as fitted (the
-    engine's nuisance solved again). The base the engine holds must be the fit's own."""
+def own_gain(engine: Engine, fit: FitResult) -> float:
+    """What the last effect of ``fit`` (a fit on the engine's scored samples, as the model
+    written is) does itself: 1 − its RMS gap over the gap with that effect's amplitudes at no
+    effect (``Effect.without``), everything else as fitted (the engine's nuisance solved
+    again). The base the engine holds must be the fit's own."""
     *rest, last = fit.entries
     off = rest + [{"name": last["name"], "params": EFFECTS[last["name"]].without(last["params"])}]
-    without = fit_result(engine, fit.g, fit.k0, off, fit.u, mask)
-    with_ = float(np.sum((engine.c.measured - fit.pred)[mask] ** 2))
-    return float(1.0 - math.sqrt(with_ / max(without.rss, 1e-300)))
+    without = fit_result(engine, fit.g, fit.k0, off, fit.u, engine.scored)
+    return float(1.0 - math.sqrt(fit.rss / max(without.rss, 1e-300)))
 
 
 def _effective_n(resid: np.ndarray) -> float:
@@ -2293,7 +2293,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # σ1, S(v) and the curve, those took up what it explained beside the free steady curve (on a
     # clean linear stage a softening's h went from −0.07 in the decision to −0.008 written)
     unused = []
-    while named and (own := own_gain(engine, written[-1][0], allm)) < PRESCREEN * s.min_gain:
+    while named and (own := own_gain(engine, written[-1][0])) < PRESCREEN * s.min_gain:
         gone = named.pop()
         unused.append({"name": gone, "own_gain": own})
         cmp_.notes.append(f"{gone} is not named: in the model written it removes under {PRESCREEN * s.min_gain:.1%} "
