@@ -83,6 +83,9 @@ class Context:
     min_excursion: float = 0.0
     # counts above other thresholds, made once per context (a softening's own min_excursion)
     _counts: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    # the ripple's phase at the last wavelength asked for: a fit varies the amplitudes far more
+    # often than the wavelength (a Jacobian's columns), and the sines are most of a ripple's cost
+    _phase: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def signal(self, name: str, effect: str) -> np.ndarray:
         a = getattr(self, name)
@@ -99,6 +102,15 @@ class Context:
         if key not in self._counts:
             self._counts[key] = significant_reversals(self.signal("position", effect), key)
         return self._counts[key]
+
+    def phase_along_position(self, wavelength: float, effect: str) -> tuple[np.ndarray, np.ndarray]:
+        """(sin θ, cos θ) of θ = 2π·x/λ along the context's position, kept for the last λ."""
+        key = float(wavelength)
+        if key not in self._phase:
+            th = 2.0 * np.pi * self.signal("position", effect) / key
+            self._phase.clear()
+            self._phase[key] = (np.sin(th), np.cos(th))
+        return self._phase[key]
 
 
 @dataclass(frozen=True)
@@ -158,11 +170,13 @@ def _load(v, ctx):
 def _ripple(v, ctx):
     # a periodic profile along the position (a tooth, a ball circuit, a wave of the guide):
     # fundamental and second harmonic, as a tooth profile is seldom a sine
-    x = ctx.signal("position", "position_ripple")
-    th = 2.0 * np.pi * x / v["wavelength"]
-    out = 1.0 + v["a"] * np.sin(th + v["phase"])
+    # sin(θ + φ) = sin θ·cos φ + cos θ·sin φ, and the second harmonic's sin 2θ, cos 2θ from
+    # the same sin θ, cos θ: only these two are evaluated along the position (and kept)
+    s, c = ctx.phase_along_position(v["wavelength"], "position_ripple")
+    out = 1.0 + v["a"] * (s * math.cos(v["phase"]) + c * math.sin(v["phase"]))
     if v.get("a2", 0.0):
-        out += v["a2"] * np.sin(2.0 * th + v.get("phase2", 0.0))
+        p2 = v.get("phase2", 0.0)
+        out += v["a2"] * (2.0 * s * c * math.cos(p2) + (c * c - s * s) * math.sin(p2))
     return out
 
 

@@ -282,8 +282,8 @@ def test_a_stiffness_trend_that_never_settles_is_seen_and_not_named():
     # whose sweep orders its speeds in time: a softening with the reversals fitted to it runs
     # its n_c to the bound. With must_settle (the default) it is not named, and the report says it
     # was seen and why; without (diagnose --no-require-settling) it is named with that caveat.
-    # Counted at the smallest back-travel alone (softening_thresholds=1, the default), where it
-    # passes held out; with the threshold fitted (6 tried) it does not even pass here (2.3 %)
+    # Counted at the smallest back-travel alone (softening_thresholds=1), where it passes held
+    # out; with the threshold fitted (6 tried, the default) it does not even pass here (2.3 %)
     from leuven_friction.identify.diagnose import Settings
 
     rec, base = _stiffness_falling_in_time("linear_stage", 3002)

@@ -2,6 +2,7 @@
 simulation, and the count of significant reversals — each against an expectation written
 out here, not taken from the code under test."""
 
+import math
 
 import numpy as np
 import pytest
@@ -41,6 +42,24 @@ def test_every_effect_without_its_amplitudes_is_a_factor_of_one_and_with_them_is
         off = e.without(v)
         assert np.all(e.scale(off, ctx) == 1.0), name
         assert {k: off[k] for k in v if k not in e.neutral} == {k: v[k] for k in v if k not in e.neutral}
+
+
+def test_position_ripple_takes_its_values_at_known_phases_at_each_wavelength_asked_in_turn():
+    # 1 + a·sin(2πx/λ) + a2·sin(4πx/λ) along x = 0, 5, 10, 15, 2.5 mm: at λ = 20 mm those are
+    # 0, 1/4, 1/2, 3/4, 1/8 of a wavelength, at λ = 40 mm 0, 1/8, 1/4, 3/8, 1/16. One context
+    # keeps the sines of the last wavelength asked for; asking the other and then the first
+    # again must give each its own values
+    a, a2, r = 0.1, 0.04, 2**-0.5
+    s16, s8 = math.sin(math.pi / 8), math.sin(math.pi / 4)
+    ctx = Context(time=np.arange(5.0), position=np.array([0.0, 5e-3, 10e-3, 15e-3, 2.5e-3]))
+    expected = {0.02: [1.0, 1.0 + a, 1.0, 1.0 - a, 1.0 + a * r + a2],
+                0.04: [1.0, 1.0 + a * r + a2, 1.0 + a, 1.0 + a * r - a2, 1.0 + a * s16 + a2 * s8]}
+    for lam in (0.02, 0.04, 0.02):
+        f = EFFECTS["position_ripple"].scale({"a": a, "wavelength": lam, "phase": 0.0, "a2": a2, "phase2": 0.0}, ctx)
+        assert f == pytest.approx(expected[lam], abs=1e-12), lam
+    # a phase shifts the profile: φ = π/2 turns the sine into a cosine
+    f = EFFECTS["position_ripple"].scale({"a": a, "wavelength": 0.02, "phase": math.pi / 2, "a2": 0.0}, ctx)
+    assert f == pytest.approx([1.0 + a, 1.0, 1.0 - a, 1.0, 1.0 + a * r], abs=1e-12)
 
 
 def test_rate_stiffness_is_a_power_of_the_speed_above_its_floor_and_capped():
