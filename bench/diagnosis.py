@@ -5,7 +5,7 @@ with hidden drift and a robot joint with a hidden load dependence, from ``synth/
 timed; a baseline (one displacement simulation of the same recording) is timed in the same
 process so the ratio travels between machines.
 
-``python -m bench.diagnosis --suite [--quick] [--fit-base] [--no-require-settling] [--start SEED] [--out FILE]``: the hidden-effect suite — every
+``python -m bench.diagnosis --suite [--quick] [--fit-base] [--no-require-settling] [--shuffled-sweeps] [--start SEED] [--out FILE]``: the hidden-effect suite — every
 case diagnosed from its CSV with the generator's own friction (no effect) seen through the
 Leuven model as the base — and the confusion matrix true × named.
 """
@@ -20,11 +20,12 @@ import time
 import numpy as np
 
 
-def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True):
+def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True, shuffled=False):
     from leuven_friction.identify.diagnose import Settings, diagnose
-    from synth.hidden import SUITE_RATE, make_case, oracle_params, to_recording
+    from synth.hidden import SUITE_RATE, make_case, oracle_params, shuffled_levels, to_recording
 
-    df, truth, case = make_case(kind, seed, effects, rate=SUITE_RATE[kind])
+    levels = shuffled_levels(kind, seed) if shuffled else None
+    df, truth, case = make_case(kind, seed, effects, rate=SUITE_RATE[kind], levels=levels)
     rec = to_recording(df, name=f"{case.label}.csv")
     if base == "oracle":
         params = oracle_params(truth)
@@ -142,10 +143,12 @@ def format_matrix(conf) -> str:
 
 
 def run_suite(quick: bool = False, out: str | None = None, progress=print, base: str = "oracle",
-              must_settle: bool = True, start: int = 1000) -> dict:
+              must_settle: bool = True, start: int = 1000, shuffled: bool = False) -> dict:
     """Diagnose every case of the suite; ``start`` is its first seed (the README's numbers are
     from 1000; another start draws other machines, schedules and effects, none of them seen
-    while the decision rules were set)."""
+    while the decision rules were set). ``shuffled``: the joints' and stages' sweeps visit
+    their speed levels in a shuffled order (``synth.hidden.shuffled_levels``), the experiment
+    the diagnosis proposes where a sweep in rising speeds confounds a drift with S(v)."""
     from synth.hidden import suite
 
     cases = suite(3, 6, 1, start=start) if quick else suite(10, 20, 4, start=start)
@@ -153,7 +156,7 @@ def run_suite(quick: bool = False, out: str | None = None, progress=print, base:
     t0 = time.perf_counter()
     for i, (kind, seed, eff) in enumerate(cases):
         try:
-            r = _diagnose_case(kind, seed, eff, base, must_settle)
+            r = _diagnose_case(kind, seed, eff, base, must_settle, shuffled)
         except Exception as e:  # a failure is a result too: counted, not hidden
             r = {"kind": kind, "seed": seed, "hidden": list(eff), "expected": sorted(eff), "named": [],
                  "error": f"{type(e).__name__}: {e}", "rms_steps": [1, 1], "seconds": 0.0}
@@ -165,7 +168,7 @@ def run_suite(quick: bool = False, out: str | None = None, progress=print, base:
                 json.dump({"rows": rows}, fh)
     res = {"rows": rows, "confusion": confusion(rows), "scores": scores(rows), "sd_calibration": sd_calibration(rows),
            "seconds": time.perf_counter() - t0,
-           "start": start}
+           "start": start, "shuffled_sweeps": shuffled}
     if out:
         with open(out, "w") as fh:
             json.dump(res, fh, indent=1)
@@ -214,7 +217,8 @@ if __name__ == "__main__":
         out = args[args.index("--out") + 1] if "--out" in args else None
         res = run_suite("--quick" in args, out, base="fit" if "--fit-base" in args else "oracle",
                         must_settle="--no-require-settling" not in args,
-                        start=int(args[args.index("--start") + 1]) if "--start" in args else 1000)
+                        start=int(args[args.index("--start") + 1]) if "--start" in args else 1000,
+                        shuffled="--shuffled-sweeps" in args)
         print(format_matrix(res["confusion"]))
         print(json.dumps(res["scores"], indent=1))
         print(json.dumps(res["sd_calibration"], indent=1))

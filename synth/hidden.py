@@ -196,6 +196,18 @@ def oracle_params(truth):
                                     sigma1=float(truth.sigma1), inertia=float(truth.inertia), units=units, n=16.0)
 
 
+def shuffled_levels(kind: str, seed: int) -> np.ndarray | None:
+    """The sweep levels ``make_recording`` would visit in rising order for this machine, in an
+    order shuffled by the seed: the separating experiment the diagnosis proposes when a sweep
+    orders its speeds in time (a drift and the shape of S(v) are then confounded). Pass as
+    ``make_case(..., levels=...)``. None for a tribometer, whose strokes cycle through their
+    speeds already."""
+    if kind == "tribometer":
+        return None
+    levels = R.sweep_levels(R._random_machine(kind, np.random.default_rng(seed))["stribeck"])
+    return levels[np.random.default_rng([seed, 555]).permutation(len(levels))]
+
+
 SUITE_RATE = {"robot_joint": 250.0, "linear_stage": 400.0, "tribometer": 200.0}  # Hz, to keep the suite short
 
 

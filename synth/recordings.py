@@ -267,6 +267,12 @@ def _schedule_force_ramps(Fs_pos, Fs_neg, rate_force, dt, rng):
     return np.concatenate(seg)
 
 
+def sweep_levels(stribeck: dict) -> np.ndarray:
+    """A joint's or stage's constant-velocity levels (magnitudes, rising): below and above the
+    Stribeck velocity."""
+    return abs(stribeck["positive"]["vs"]) * np.geomspace(0.1, 25.0, 9)
+
+
 def _schedule_velocity_sweep(levels, dt, rng, one_sided, vs, t_acc=0.2):
     """v_ref: 0 → level in t_acc, hold 1–2.5 s (plus 2·sqrt(vs/level) s: breakaway under
     PI control takes longer at low speed), back to 0, short rest; levels positive then
@@ -328,7 +334,7 @@ def make_recording(kind: str = "robot_joint", seed: int = 0, *, rate: float | No
     if kind in ("robot_joint", "linear_stage"):
         vs_mag = abs(st["positive"]["vs"])
         if levels is None:
-            levels = vs_mag * np.geomspace(0.1, 25.0, 9)  # below and above the Stribeck velocity
+            levels = sweep_levels(st)
         Fs_p, Fs_n = st["positive"]["Fs"], st["negative"]["Fs"]
         ramp_rate = 0.5 * Fs_p * rng.uniform(0.8, 1.2)  # force per second
         u_pre = _schedule_force_ramps(Fs_p, Fs_n, ramp_rate / duration_scale, dt_out, rng)
