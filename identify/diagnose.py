@@ -19,7 +19,9 @@ out-of-sample evidence, add it, refit, look again.
    curve refitted (``refit_transition``: first as the model alone, then from there), beside a
    free steady curve (``FreeSteadyCurve``: any correction to S(v), a
    level of its own at rest, and for friction taken from an applied force a free inertia),
-   which is linear and profiled out of every evaluation.
+   which is linear and profiled out of every evaluation. A stiffness effect's alternative also
+   holds a stiffness varying with speed and, beside a friction effect already in the model, a
+   presliding range following that effect (``stiffness_alternative``, never named).
 3. **Candidates** (``model.effects.EFFECTS``): each is screened (its shape parameter — time
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
@@ -76,7 +78,7 @@ from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, sim
 from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
-from ..model.effects import EFFECTS, Context, Signals, effect_scales, format_values, significant_reversals
+from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
 from .data import DataError, Recording
 from .errors import IdentificationError
 from .markov import Levels
@@ -95,7 +97,8 @@ class Settings:
     clear_margin: float = 0.25  # the better of two alike candidates must gain this much more (relative)
     max_effects: int = 3
     free_steady: bool = True  # the alternative holds a free correction to S(v) (FreeSteadyCurve)
-    rate_nuisance: bool = True  # a stiffness effect is judged beside a stiffness varying with speed (rate_alternative)
+    rate_nuisance: bool = True  # a stiffness effect is judged beside a stiffness varying with speed (stiffness_alternative)
+    range_nuisance: bool = True  # … and, beside a friction effect, a presliding range following it (stiffness_alternative)
     refit_curve: bool = True  # the alternative reshapes a piecewise-linear F_d segment by segment (refit_transition)
     space: str = "friction"  # "position": a force-driven recording compared by output error in position
     must_settle: bool = True  # an effect with a saturation scale is named only if seen to settle (``Term.unsettled``)
@@ -761,6 +764,10 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
                     (("h", "lin", -0.9, 5.0),
                      ("n_c", "log", math.log(3.0), math.log(max(nrev * softening_nc_max(strokes), 3.5)))),
                     settles="n_c")
+    if name == "presliding_range":
+        # e from the range fixed (−1: the stiffness rising with friction squared) to beyond the
+        # stiffness fixed (2): a contact's tangential stiffness seldom grows faster than its friction
+        return Term(name, {}, (("e", "lin", -1.0, 2.0),))
     if name == "rate_stiffness":
         st = cmp_.params.stribeck
         v_ref = min(abs(st.positive.vs), abs(st.negative.vs))
@@ -1040,8 +1047,11 @@ class Engine:
         fs, ss = self.scales(g, k0, entries)
         c = self.c
         if c.space == "friction":
+            # the simulation depends on the stiffness effects only, unless one follows the friction
+            # effects' factor (``presliding_range``): then on theirs too
+            everything = follows_friction(entries)
             key = (k0, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
-                             if EFFECTS[e["name"]].acts_on == "stiffness"))
+                             if everything or EFFECTS[e["name"]].acts_on == "stiffness"))
             if key != self._cache_key:
                 self._cache = simulate_displacement(self.p, c.time, c.path, stiffness_scale=ss).friction_force
                 self._cache_key = key
@@ -1506,20 +1516,49 @@ class Alternative:
         return self.sse, self.preds
 
 
-def rate_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, k0: float, mask: np.ndarray) -> Alternative:
-    """The alternative a stiffness effect is judged against: ``plain`` with a presliding
-    stiffness that varies smoothly with the sliding speed (``rate_stiffness``). A contact
-    whose transition depends on speed otherwise than eq. (5) says shows, to the model, a
+HELD_STIFFNESS = {"rate_stiffness": "a stiffness varying with speed",
+                  "presliding_range": "a presliding range following the friction effects"}
+
+
+def stiffness_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, k0: float, mask: np.ndarray,
+                          held: tuple) -> Alternative:
+    """The alternative a stiffness effect is judged against: ``plain`` with the stiffness
+    effects ``held`` (``HELD_STIFFNESS``), fitted with it and never named.
+
+    ``rate_stiffness``: a presliding stiffness that varies smoothly with the sliding speed. A
+    contact whose transition depends on speed otherwise than eq. (5) says shows, to the model, a
     stiffness that follows the speed of each stroke; where a session's speeds rise with the
     number of reversals (a sweep in rising order), that would otherwise be credited to a
-    softening or hardening with the reversals. The presliding stiffness κ0 is refitted with it
-    and with every candidate judged against it: a softening starts stiffer than the average the
-    alternative's κ0 holds."""
-    term = _terms_for("rate_stiffness", cmp_)
-    terms = plain.terms + [term]
-    u0 = np.concatenate([[math.log(plain.fit.g), math.log(k0)], plain.u, np.zeros(len(term.free))])
+    softening or hardening with the reversals.
+
+    ``presliding_range`` (where a friction effect is in the model): the presliding range
+    following that effect's factor. A named drift or load scales eq. (3)'s F whole, the
+    presliding stiffness with it; a contact whose stiffness does not follow (a drift of the
+    lubricant, not of the asperities' elasticity) leaves the transitions a stiffness changing
+    as the drift goes on, which on a session of regular strokes is a trend in the reversals
+    too — a softening by accident.
+
+    The presliding stiffness κ0 is refitted with it and with every candidate judged against
+    it: a softening starts stiffer than the average the alternative's κ0 holds."""
+    extra = [_terms_for(name, cmp_) for name in held]
+    terms = plain.terms + extra
+    u0 = np.concatenate([[math.log(plain.fit.g), math.log(k0)], plain.u] + [np.zeros(len(t.free)) for t in extra])
     fr = _fit(engine, terms, u0, mask, fit_k0=True, k0=k0)
-    return Alternative(fr, terms, fr.u[1:], "a stiffness varying with speed", fit_k0=True)
+    return Alternative(fr, terms, fr.u[1:], " and ".join(HELD_STIFFNESS[n] for n in held), fit_k0=True)
+
+
+def held_stiffness(terms: list, settings: Settings) -> tuple:
+    """The stiffness effects a stiffness candidate is judged beside, given the model's ``terms``
+    (``stiffness_alternative``): each not in the model already, a presliding range only beside a
+    friction effect."""
+    have = {t.name for t in terms}
+    out = []
+    if settings.rate_nuisance and "rate_stiffness" not in have:
+        out.append("rate_stiffness")
+    if (settings.range_nuisance and "presliding_range" not in have
+            and any(EFFECTS[n].acts_on == "friction" for n in have)):
+        out.append("presliding_range")
+    return tuple(out)
 
 
 def own_gain(engine: Engine, fit: FitResult) -> float:
@@ -2148,7 +2187,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"S(v) are confounded here, and part of a drift is taken as S(v). To tell: visit the "
                           f"speed levels in a shuffled order, or repeat the first ones at the session's end")
     if "cyclic_softening" in s.candidates and abs(strokes.rho) >= SPEED_ORDER_RHO:
-        # the stiffness varying with speed a softening is judged beside (rate_alternative) then
+        # the stiffness varying with speed a softening is judged beside (stiffness_alternative) then
         # takes up part of a true softening, and a transition whose dependence on speed eq. (5)
         # misses looks like a softening: the two are the same trend along such a session
         cmp_.notes.append(f"the strokes run at speeds in order of the reversals (|Spearman ρ| {strokes.rho:.2f} over "
@@ -2168,8 +2207,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     scored = [pred_given + engine.nuisance(r0, allm, pred_given), null.pred]
     named = []
     sds = {}  # the named effects' parameter σ (``effect_sds``)
-    # the file's own effects are refitted with every candidate: theirs too (not a held rate_stiffness)
-    refitted_prior = {t.name for t in prior_terms if t.name != "rate_stiffness"}
+    # the file's own effects are refitted with every candidate: theirs too (not a held stiffness, HELD_STIFFNESS)
+    refitted_prior = {t.name for t in prior_terms if t.name not in HELD_STIFFNESS}
     confounded = []
     cur, cur_terms, cur_u = null, list(prior_terms), null.u[2:] if len(null.u) > 2 else np.zeros(0)
     fits = [(list(prior_terms), np.concatenate([[math.log(null.g)], null.u[2:]]))]  # per step: terms, u
@@ -2184,10 +2223,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         todo = [c for c in names if c not in named and c not in excluded]
         plain = Alternative(cur, cur_terms, cur_u)
         beside_rate = None
-        if (s.rate_nuisance and any(EFFECTS[c].acts_on == "stiffness" for c in todo)
-                and not any(t.name == "rate_stiffness" for t in cur_terms)):
-            say(0.1 + 0.8 * step / s.max_effects, f"step {step + 1}: the alternative with a stiffness varying with speed")
-            beside_rate = rate_alternative(engine, cmp_, plain, k0, allm)
+        held = held_stiffness(cur_terms, s)
+        if held and any(EFFECTS[c].acts_on == "stiffness" for c in todo):
+            say(0.1 + 0.8 * step / s.max_effects,
+                f"step {step + 1}: the alternative with {' and '.join(HELD_STIFFNESS[n] for n in held)}")
+            beside_rate = stiffness_alternative(engine, cmp_, plain, k0, allm, held)
         for j, name in enumerate(todo):
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
             alt = beside_rate if (beside_rate is not None and EFFECTS[name].acts_on == "stiffness") else plain
@@ -2276,8 +2316,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             cmp_.notes.append(f"{winner.name} is named because settling is not required here (`diagnose "
                               f"--no-require-settling`), but {winner.unsettled}")
         if winner.beside:
-            cmp_.notes.append(f"{winner.name} was judged beside {winner.beside} (rate_stiffness, held with it in "
-                              f"the model written, not named)")
+            held_now = [t.name for t in winner.against.terms if t.name in HELD_STIFFNESS]
+            cmp_.notes.append(f"{winner.name} was judged beside {winner.beside} ({', '.join(held_now)}, held with it "
+                              f"in the model written, not named)")
         head = 2 if winner.against.fit_k0 else 1  # log g (and log κ0, refitted with it)
         k0 = winner.fit.k0
         refit = _fit(engine, cur_terms, np.concatenate([[math.log(winner.fit.g)], winner.fit.u[head:]]),

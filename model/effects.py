@@ -24,6 +24,7 @@ An effect is stored in a parameter file as ``{name: ..., params: {...}}``;
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
@@ -81,11 +82,22 @@ class Context:
     load: np.ndarray | None = None
     reversals: np.ndarray | None = None  # running count of significant reversals above ``min_excursion``
     min_excursion: float = 0.0
+    # the product of the friction effects' factors, for an effect on the stiffness that follows
+    # them (``presliding_range``); ``effect_scales`` sets it (``with_friction_factor``)
+    friction_factor: np.ndarray | None = None
     # counts above other thresholds, made once per context (a softening's own min_excursion)
     _counts: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     # the ripple's phase at the last wavelength asked for: a fit varies the amplitudes far more
     # often than the wavelength (a Jacobian's columns), and the sines are most of a ripple's cost
     _phase: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def with_friction_factor(self, m: np.ndarray) -> "Context":
+        """This context with the friction effects' factor ``m``, sharing its caches (the
+        reversal counts and the ripple's sines are the same along the same motion)."""
+        out = dataclasses.replace(self, friction_factor=m)
+        object.__setattr__(out, "_counts", self._counts)
+        object.__setattr__(out, "_phase", self._phase)
+        return out
 
     def signal(self, name: str, effect: str) -> np.ndarray:
         a = getattr(self, name)
@@ -201,6 +213,18 @@ def _rate_stiffness(v, ctx):
 RATE_STIFFNESS_LOG_MAX = 3.0  # |ln κ| at most: a factor e³ ≈ 20 either way, the span of a stiffness factor
 
 
+def _presliding_range(v, ctx):
+    # a friction effect's factor m scales eq. (3)'s F whole, the transition curve's forces
+    # with it: the presliding spring stiffens with m and the range to break-away stays. Where
+    # the stiffness does not follow (a lubricant's temperature changes the sliding friction, not
+    # the elasticity of the asperities in contact; a load that raises friction more than the
+    # contact's tangential stiffness), the range grows with m instead: the curve's abscissas
+    # times m^e, a stiffness factor κ = m^(−e) (e = 0: as eq. (3) scales it, e = 1: the
+    # stiffness unchanged)
+    m = ctx.signal("friction_factor", "presliding_range")
+    return np.exp(-v["e"] * np.log(np.maximum(m, 1e-6)))
+
+
 def _stiffness(v, ctx):
     return np.full(ctx.time.shape, v["kappa"])
 
@@ -242,6 +266,12 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
             EffectParam("v_floor", "velocity", 0.0, 1e12, "speeds below this count as this (rest)", lo_open=True)),
            ("velocity",), _rate_stiffness, "presliding cycles of one amplitude at several speeds, the slow ones "
            "repeated at the session's end", {"c1": 0.0, "c2": 0.0}),
+    Effect("presliding_range", "the presliding range follows the friction effects' factor m as m^e (the "
+           "presliding stiffness as m^(1−e)): e = 0, the spring stiffens with friction; e = 1, its stiffness "
+           "stays and the range to break-away grows with friction", "stiffness",
+           (EffectParam("e", "1", -2.0, 3.0, "exponent of the presliding range in the friction effects' factor"),),
+           ("friction_factor",), _presliding_range, "presliding cycles of one amplitude repeated as the friction "
+           "effect moves (after warm-up, at another load)", {"e": 0.0}),
     Effect("presliding_stiffness", "the presliding spring is uniformly stiffer (κ > 1) or softer than the "
            "transition curve", "stiffness",
            (EffectParam("kappa", "1", 0.01, 100.0, "stiffness factor"),),
@@ -338,18 +368,32 @@ def _reversal_threshold(entries) -> float:
     return float(max(th)) if th else 0.0
 
 
-def effect_scales(effects, ctx: Context) -> tuple[np.ndarray | None, np.ndarray | None]:
-    """(friction_scale, stiffness_scale): the product of every effect's factor, or None where
-    no effect acts."""
-    fs = ss = None
-    for i, entry in enumerate(effects):
-        eff = effect_of(entry["name"])
+def _products(pairs, ctx: Context, fs, ss):
+    for eff, entry in pairs:
         s = eff.scale(entry["params"], ctx)
         if eff.acts_on == "friction":
             fs = s.copy() if fs is None else fs * s
         else:
             ss = s.copy() if ss is None else ss * s
     return fs, ss
+
+
+def effect_scales(effects, ctx: Context) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """(friction_scale, stiffness_scale): the product of every effect's factor, or None where
+    no effect acts. An effect that follows the friction effects (``friction_factor`` in its
+    ``needs``) is evaluated after them, on their product."""
+    pairs = [(effect_of(e["name"]), e) for e in effects]
+    following = [(f, e) for f, e in pairs if "friction_factor" in f.needs]
+    fs, ss = _products([(f, e) for f, e in pairs if "friction_factor" not in f.needs], ctx, None, None)
+    if following:
+        fs, ss = _products(following, ctx.with_friction_factor(np.ones(ctx.time.shape) if fs is None else fs), fs, ss)
+    return fs, ss
+
+
+def follows_friction(entries) -> bool:
+    """Whether an effect among ``entries`` follows the friction effects' factor (its value
+    then changes with theirs: a cached simulation at a stiffness must be keyed by them too)."""
+    return any("friction_factor" in effect_of(e["name"]).needs for e in entries)
 
 
 def needs_motion(effects) -> bool:

@@ -42,3 +42,22 @@ def test_a_load_hidden_in_a_joint_with_such_an_encoder_is_named(tmp_path):
     assert abs(alpha - truth["effect_params"]["alpha"]) < 3 * sd, (alpha, sd, truth["effect_params"]["alpha"])
     # the gap of the model written shrinks by more than 30 % when the load is named
     assert step["rms"] < 0.7 * rep["steps"][1]["rms"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("effect, seed", [("time_drift", 2), ("normal_load", 3)])
+def test_a_friction_effect_whose_contact_keeps_its_stiffness_names_no_softening_beside_it(tmp_path, effect, seed):
+    # this generator scales the elements' slip levels by the drift or the load, not their
+    # stiffness: the presliding range grows with friction. The model's friction effect scales
+    # eq. (3)'s F whole, so the transitions keep a stiffness changing as the effect goes on — on
+    # a tribometer's regular strokes a trend in the reversals as well, which was named an extra
+    # cyclic_softening here (gaps 0.115 → 0.055 mN, 0.066 → 0.056). A softening is judged beside
+    # a presliding range following the friction effect (presliding_range), and is not named
+    df, truth = make("tribometer", seed, effect)
+    path = tmp_path / f"tribometer_{effect}.csv"
+    df.to_csv(path, index=False, float_format="%.10g")
+    out = tmp_path / "report.json"
+    assert main(["diagnose", str(path), "--json", str(out)]) == 0
+    rep = json.loads(out.read_text())
+    assert rep["effects"] == [effect], rep["effects"]
+    assert rep["steps"][2]["rms"] < 0.7 * rep["steps"][1]["rms"]

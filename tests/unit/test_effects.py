@@ -29,12 +29,13 @@ def test_every_effect_without_its_amplitudes_is_a_factor_of_one_and_with_them_is
     t = np.linspace(0.0, 50.0, 2001)
     x = 0.02 * np.sin(2 * np.pi * t / 7.0) + 0.001 * t
     ctx = Context(time=t, position=x, velocity=np.gradient(x, t), load=100.0 + 30.0 * np.sin(t / 3.0),
-                  reversals=significant_reversals(x, 1e-4), min_excursion=1e-4)
+                  reversals=significant_reversals(x, 1e-4), min_excursion=1e-4,
+                  friction_factor=1.0 + 0.2 * np.sin(t / 5.0))
     values = {"time_drift": {"b": 0.3, "tau": 8.0, "t0": 0.0}, "normal_load": {"alpha": 0.8, "N0": 90.0},
               "position_ripple": {"a": 0.1, "wavelength": 0.013, "phase": 0.4, "a2": 0.03, "phase2": 1.0},
               "cyclic_softening": {"h": -0.4, "n_c": 3.0, "min_excursion": 1e-4},
               "rate_stiffness": {"c1": 0.2, "c2": -0.05, "v_ref": 0.01, "v_floor": 1e-4},
-              "presliding_stiffness": {"kappa": 1.7}}
+              "presliding_stiffness": {"kappa": 1.7}, "presliding_range": {"e": 0.8}}
     assert set(values) == set(EFFECTS)
     for name, v in values.items():
         e = EFFECTS[name]
@@ -197,6 +198,43 @@ def test_softening_factor_scales_the_presliding_stiffness(kuka):
         dx = x[k] - x[2000]
         expected = np.interp(kappa * dx, z_knots, F_knots)
         assert np.allclose(fh[k] - fh[2000], expected, rtol=0.03), kappa
+
+
+def test_a_presliding_range_following_the_friction_factor_keeps_the_stiffness_and_scales_the_break_away(kuka):
+    # a load at twice its reference with α = 1 doubles F (eq. (3) scaled whole): Table II's curve
+    # at twice its forces, the spring twice as stiff. With the presliding range following that
+    # factor as m^e the curve is m·F_d(z/m^e): e = 1 keeps the initial stiffness and still
+    # doubles the force where the curve has saturated; e = 0.5 stiffens by √2
+    t = np.arange(3000) * 1e-3
+    x = np.concatenate([np.linspace(0, 2e-3, 1000), np.linspace(2e-3, -2e-3, 1000), np.linspace(-2e-3, 0, 1000)])
+    load = np.full(len(t), 200.0)
+    z_knots, F_knots = np.array(kuka.transition_curve.z), np.array(kuka.transition_curve.F)
+    m = 2.0
+    double = _entry("normal_load", alpha=1.0, N0=100.0)
+    k = np.arange(1001, 1011)  # just after the reversal at 2 mrad
+    dx = x[1000] - x[k]
+    plain = predict(kuka, "displacement", Signals(time=t, position=x)).hysteresis_force
+    for e in (None, 1.0, 0.5):
+        effects = (double,) if e is None else (double, _entry("presliding_range", e=e))
+        fh = predict(kuka.replace(effects=effects), "displacement", Signals(time=t, position=x, load=load)).hysteresis_force
+        stretch = 1.0 if e is None else m**e
+        expected = m * np.interp(dx / stretch, z_knots, F_knots)
+        assert np.allclose(fh[1000] - fh[k], expected, rtol=0.03), e
+        # 4 mrad back is far beyond the curve's last knot, in gross sliding: the change from
+        # one sliding direction to the other is the model's without the load, doubled
+        assert fh[1000] - fh[1999] == pytest.approx(m * (plain[1000] - plain[1999]), rel=0.02), e
+
+
+def test_a_presliding_range_needs_a_friction_factor_and_is_one_without_friction_effects():
+    ctx = Context(time=np.arange(4.0))
+    with pytest.raises(ParameterError, match="friction factor"):
+        EFFECTS["presliding_range"].scale({"e": 1.0}, ctx)
+    from leuven_friction.model.effects import effect_scales
+
+    fs, ss = effect_scales([_entry("presliding_range", e=0.7)], ctx)
+    assert fs is None and np.all(ss == 1.0)
+    fs, ss = effect_scales([_entry("presliding_range", e=0.5), _entry("time_drift", b=3.0, tau=1e-9, t0=0.0)], ctx)
+    assert fs == pytest.approx([1.0, 4.0, 4.0, 4.0]) and ss == pytest.approx([1.0, 0.5, 0.5, 0.5])
 
 
 def test_effect_values_are_printed_with_the_units_of_the_parameter_set():
