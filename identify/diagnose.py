@@ -2222,15 +2222,15 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         evid = []
         todo = [c for c in names if c not in named and c not in excluded]
         plain = Alternative(cur, cur_terms, cur_u)
-        beside_rate = None
+        beside_stiffness = None
         held = held_stiffness(cur_terms, s)
         if held and any(EFFECTS[c].acts_on == "stiffness" for c in todo):
             say(0.1 + 0.8 * step / s.max_effects,
                 f"step {step + 1}: the alternative with {' and '.join(HELD_STIFFNESS[n] for n in held)}")
-            beside_rate = stiffness_alternative(engine, cmp_, plain, k0, allm, held)
+            beside_stiffness = stiffness_alternative(engine, cmp_, plain, k0, allm, held)
         for j, name in enumerate(todo):
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
-            alt = beside_rate if (beside_rate is not None and EFFECTS[name].acts_on == "stiffness") else plain
+            alt = beside_stiffness if (beside_stiffness is not None and EFFECTS[name].acts_on == "stiffness") else plain
             rss_null = alt.fit.rss
             options = fit_candidate(engine, name, cmp_, strokes, alt, allm, k0, s.softening_thresholds)
             if not options:

@@ -221,8 +221,7 @@ def _presliding_range(v, ctx):
     # contact's tangential stiffness), the range grows with m instead: the curve's abscissas
     # times m^e, a stiffness factor κ = m^(−e) (e = 0: as eq. (3) scales it, e = 1: the
     # stiffness unchanged)
-    m = ctx.signal("friction_factor", "presliding_range")
-    return np.exp(-v["e"] * np.log(np.maximum(m, 1e-6)))
+    return np.maximum(ctx.signal("friction_factor", "presliding_range"), 1e-6) ** -v["e"]
 
 
 def _stiffness(v, ctx):
@@ -383,17 +382,21 @@ def effect_scales(effects, ctx: Context) -> tuple[np.ndarray | None, np.ndarray 
     no effect acts. An effect that follows the friction effects (``friction_factor`` in its
     ``needs``) is evaluated after them, on their product."""
     pairs = [(effect_of(e["name"]), e) for e in effects]
-    following = [(f, e) for f, e in pairs if "friction_factor" in f.needs]
-    fs, ss = _products([(f, e) for f, e in pairs if "friction_factor" not in f.needs], ctx, None, None)
+    following = [(f, e) for f, e in pairs if _follows(f)]
+    fs, ss = _products([(f, e) for f, e in pairs if not _follows(f)], ctx, None, None)
     if following:
         fs, ss = _products(following, ctx.with_friction_factor(np.ones(ctx.time.shape) if fs is None else fs), fs, ss)
     return fs, ss
 
 
+def _follows(eff: Effect) -> bool:
+    return "friction_factor" in eff.needs
+
+
 def follows_friction(entries) -> bool:
     """Whether an effect among ``entries`` follows the friction effects' factor (its value
     then changes with theirs: a cached simulation at a stiffness must be keyed by them too)."""
-    return any("friction_factor" in effect_of(e["name"]).needs for e in entries)
+    return any(_follows(effect_of(e["name"])) for e in entries)
 
 
 def needs_motion(effects) -> bool:
