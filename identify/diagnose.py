@@ -1833,6 +1833,35 @@ def median_stroke(cmp_: Comparison) -> float:
     return float(travel[int(np.searchsorted(cum, 0.5 * cum[-1]))])
 
 
+def observed_presliding_range(cmp_: Comparison) -> float | None:
+    """The presliding range the recording itself shows: the median, over the strokes between
+    significant reversals, of the travel from the turn after which the compared friction has
+    covered 90 % of its swing from the turn to the stroke's sliding level (the median of its
+    middle third), a swing of at least 20 noise floors. None from fewer than three strokes.
+
+    Used where the transition curve was not identified (a fit that found no presliding
+    branches holds its starting file's curve, another machine's in other units): the range
+    sets what counts as gross sliding and the shortest ripple that can be told from the
+    hysteresis after each turn. A range under the position's resolution reads as the few
+    samples the crossing takes: an upper bound on it."""
+    x, F = cmp_.path, cmp_.measured
+    count = significant_reversals(x, cmp_.min_excursion)
+    turns = np.r_[0, np.flatnonzero(np.diff(count) > 0) + 1, len(x) - 1]
+    out = []
+    for r, nxt in zip(turns[1:-1], turns[2:]):
+        direction = np.sign(x[nxt] - x[r])
+        mid = slice(r + (nxt - r) // 3, r + 2 * (nxt - r) // 3)
+        if direction == 0 or mid.stop - mid.start < 5:
+            continue
+        swing = direction * (float(np.median(F[mid])) - F[r])
+        if swing < 20.0 * cmp_.noise:
+            continue
+        past = np.flatnonzero(direction * (F[r:mid.stop] - F[r]) > 0.9 * swing)
+        if len(past):
+            out.append(direction * (x[r + int(past[0])] - x[r]))
+    return float(np.median(out)) if len(out) >= 3 else None
+
+
 def gross_sliding(cmp_: Comparison) -> np.ndarray:
     """Samples in gross sliding: moving, and more than twice the presliding range travelled
     since the velocity last changed sign, so the transition curve no longer matters and the
@@ -2060,10 +2089,16 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     identified = any(k.startswith("transition_curve") for k in params.uncertainty)
     if stroke > 0 and cmp_.z_presliding > stroke / 8 and not identified:
         # a transition curve held from another machine (a fit without presliding data keeps
-        # its starting file's) can claim a presliding range as long as the strokes
+        # its starting file's) can claim a presliding range as long as the strokes: the
+        # recording's own crossings after its turns say how long it is, else an eighth of the stroke
+        seen = observed_presliding_range(cmp_) if cmp_.space == "friction" else None
+        use = min(seen, stroke / 8) if seen else stroke / 8
         cmp_.notes.append(f"the model's presliding range {cmp_.z_presliding:.3g} is over an eighth of the median "
-                          f"stroke {stroke:.3g}: {stroke / 8:.3g} is used to tell gross sliding")
-        cmp_.z_presliding = stroke / 8
+                          f"stroke {stroke:.3g} and was not identified: "
+                          + (f"the friction covers 90 % of its swing {seen:.3g} after a turn (median over the "
+                             f"strokes), and {use:.3g}" if seen else f"{use:.3g}")
+                          + " is used to tell gross sliding and the shortest ripple")
+        cmp_.z_presliding = use
     # a reversal counts once it travels back over a quarter of the presliding range: smaller
     # ones stay on the steep start of the transition curve and hardly load the contact
     cmp_.min_excursion = max(cmp_.min_excursion, 0.25 * cmp_.z_presliding)

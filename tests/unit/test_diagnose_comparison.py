@@ -684,3 +684,38 @@ def test_softening_thresholds_double_while_six_reversals_remain_and_skip_equal_c
     assert softening_thresholds(c, 1) == [0.1]
     assert softening_thresholds(c, 6) == [0.1, 0.2]
     assert softening_thresholds(SimpleNamespace(min_excursion=2.0, path=x), 6) == [2.0]  # none counts: the base kept
+
+
+def test_observed_presliding_range_reads_the_crossing_after_each_turn_of_a_maxwell_slip_contact():
+    # Strokes of ±10 presliding ranges of a Maxwell-slip contact (its friction computed here
+    # element by element): after each turn the friction follows the reversal curve
+    # Σ min(k_i·dx, 2·α_i·Fs) (Masing), so it has covered 90 % of its 2·Fs swing where that sum
+    # reaches 1.8·Fs — a travel solved here on a fine grid, not by the function under test.
+    # The range read must be that travel (to a sample), and follow the position's unit.
+    from leuven_friction.identify.diagnose import observed_presliding_range
+
+    k = np.array([1e6, 1e5, 3e4])
+    alpha = np.array([0.2, 0.3, 0.5])
+    Fs = 2.0
+    zg = np.linspace(0.0, 1e-4, 200001)
+    rev = np.sum(np.minimum(np.outer(zg, k), 2 * alpha * Fs), axis=1)
+    expect = float(zg[np.argmax(rev > 1.8 * Fs)])
+    z_pres = float(np.max(2 * alpha * Fs / k))
+    amp, step = 10 * z_pres, z_pres / 200  # samples 1/200 of the range apart
+    turns = np.array([0.0, amp, -amp, amp, -amp, amp, -amp])
+    x = np.concatenate([np.arange(a, b, step * np.sign(b - a)) for a, b in zip(turns[:-1], turns[1:])])
+    t = np.arange(len(x)) * 1e-3
+    rng = np.random.default_rng(3)
+    noise = 0.005 * Fs
+    measured = _maxwell_slip(x, k, alpha, Fs) + rng.normal(0.0, noise, len(x))
+    for unit in (1.0, 1e3):  # in m, and the same motion in mm
+        xs = x * unit
+        c = Comparison("friction", t, measured, xs, np.gradient(xs, t), None, None, noise, 0.0, 5,
+                       0.05 * z_pres * unit, 1e-9, z_presliding=1e3 * z_pres * unit)
+        seen = observed_presliding_range(c)
+        assert seen is not None and abs(seen - expect * unit) <= 3 * step * unit
+    # two strokes say nothing
+    c = Comparison("friction", t[: 2 * int(2 * amp / step)], measured[: 2 * int(2 * amp / step)],
+                   x[: 2 * int(2 * amp / step)], np.gradient(x, t)[: 2 * int(2 * amp / step)], None, None, noise, 0.0,
+                   5, 0.05 * z_pres, 1e-9)
+    assert observed_presliding_range(c) is None
