@@ -1814,6 +1814,13 @@ def unresolved_rest(cmp_: Comparison) -> UnresolvedRest:
     return UnresolvedRest(still, float(np.sum(span * w) / np.sum(w)) / level, len(runs))
 
 
+def stroke_ends(x: np.ndarray, min_excursion: float) -> np.ndarray:
+    """Sample indices that bound the strokes of the path ``x``: its start, each significant
+    reversal (back-travel over ``min_excursion``, at the turning point), its end."""
+    count = significant_reversals(x, min_excursion)
+    return np.r_[0, np.flatnonzero(np.diff(count) > 0) + 1, len(x) - 1]
+
+
 def median_stroke(cmp_: Comparison) -> float:
     """The stroke over which half the travel is made: the travel-weighted median of the
     travels between two significant reversals of the path (back-travel over
@@ -1823,8 +1830,7 @@ def median_stroke(cmp_: Comparison) -> float:
     carry no travel: a plain median of them (hundreds, against a session's tens of real
     strokes) took a stage's 2·10⁻⁶ m for its stroke beside a presliding range of 8·10⁻⁶ m."""
     x = cmp_.path
-    count = significant_reversals(x, cmp_.min_excursion)
-    turns = np.r_[0, np.flatnonzero(np.diff(count) > 0) + 1, len(x) - 1]
+    turns = stroke_ends(x, cmp_.min_excursion)
     travel = np.abs(np.diff(x[turns]))
     travel = np.sort(travel[travel > cmp_.min_excursion])
     if not len(travel):
@@ -1845,8 +1851,7 @@ def observed_presliding_range(cmp_: Comparison) -> float | None:
     hysteresis after each turn. A range under the position's resolution reads as the few
     samples the crossing takes: an upper bound on it."""
     x, F = cmp_.path, cmp_.measured
-    count = significant_reversals(x, cmp_.min_excursion)
-    turns = np.r_[0, np.flatnonzero(np.diff(count) > 0) + 1, len(x) - 1]
+    turns = stroke_ends(x, cmp_.min_excursion)
     out = []
     for r, nxt in zip(turns[1:-1], turns[2:]):
         direction = np.sign(x[nxt] - x[r])
