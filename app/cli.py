@@ -19,6 +19,11 @@ def _params(path: str | None, model: str | None):
     from ..model import as_model, default_params
 
     p = load_params(path) if path else default_params()
+    if path:
+        from ..model.params import sanity_warnings
+
+        for w in sanity_warnings(p):  # valid but physically odd: said, not refused
+            print(f"warning: {path}: {w}", file=sys.stderr)
     return as_model(p, model) if model else p
 
 

@@ -457,7 +457,8 @@ def diagnosis_signal_figure(d) -> go.Figure:
     t, m, b, a = _thin(d.time, d.measured, d.model_before, d.model_after, n=4000)
     fig.add_trace(_scatter(t, m, mode="markers", name="measured", marker=dict(size=2, color="#7f7f7f")))
     fig.add_trace(_scatter(t, b, mode="lines", name="model as given", line=dict(color=COLORS[1], width=1)))
-    fig.add_trace(_scatter(t, a, mode="lines", name="final model" + (f" (+ {', '.join(d.effects)})" if d.effects else ""),
+    fig.add_trace(_scatter(t, a, mode="lines", name="final model" + (f" (+ {', '.join(d.effects)})" if d.effects
+                                                                     else " (the one given: nothing named)"),
                            line=dict(color=COLORS[0], width=1)))
     compared = getattr(d, "compared", None)
     if compared is not None and not compared.all() and compared.any():

@@ -270,7 +270,9 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             if sig not in mapping and sig not in refused:
                 by_words.setdefault(sig, []).append(col)
                 if unit is None and unit_word is not None:
-                    headers[col] = (key, unit_word)
+                    # the unit as the header spells it ('friction_mN' → 'mN'), for the notes
+                    tail = str(col).strip()[-len(unit_word):]
+                    headers[col] = (key, tail if tail.lower() == unit_word else unit_word)
                 break
     notes = []
     ambiguous = {}

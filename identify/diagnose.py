@@ -450,7 +450,7 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     t, x, dt, vel, v_noise, v_rest, min_exc = m.t, m.x, m.dt, m.velocity, m.v_noise, m.v_rest, m.min_excursion
     cp = m.compared
     sdx, q, w, h, path = cp.sd, cp.step, cp.window, cp.h, cp.path
-    notes = [f"position noise {sdx:.3g} (step {q:.3g}); path smoothed over {w} samples and wiggles below {2 * h:.3g} removed; |v| < {v_rest:.3g} counts as presliding"]
+    notes = [f"position noise {sdx:.3g} ({f'encoder step {q:.3g}' if q > 0 else 'no encoder step'}); path smoothed over {w} samples and wiggles below {2 * h:.3g} removed; |v| < {v_rest:.3g} counts as presliding"]
     if rec.friction is not None:
         meas = np.asarray(rec.friction, dtype=np.float64)
         cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, rec.force, 0.0, sdx, w, min_exc, v_rest,
@@ -980,8 +980,7 @@ class Engine:
         self._thin_masks = {}
         self.ctx = cmp_.context()
         self.scored = np.ones(len(cmp_.time), bool) if cmp_.scored is None else cmp_.scored
-        self._cache_key = None
-        self._cache = None
+        self._sims = []  # [(base, key, friction)], the most recently used last (``SIM_CACHE``)
         self.sims = 0
         self.free_inertia = False  # the model written: eq. (8)'s inertia left free beside it (``model_nuisance``)
 
@@ -1035,7 +1034,6 @@ class Engine:
 
     def set_base(self, params: FrictionParams) -> None:
         self.p = params.replace(effects=())
-        self._cache_key = None
 
     def scales(self, g: float, k0: float, entries) -> tuple[np.ndarray, np.ndarray | None]:
         fs, ss = effect_scales(entries, self.ctx)
@@ -1052,12 +1050,22 @@ class Engine:
             everything = follows_friction(entries)
             key = (k0, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
                              if everything or EFFECTS[e["name"]].acts_on == "stiffness"))
-            if key != self._cache_key:
-                self._cache = simulate_displacement(self.p, c.time, c.path, stiffness_scale=ss).friction_force
-                self._cache_key = key
-                self.sims += 1
-            return c.filtered(fs * self._cache)
+            return c.filtered(fs * self._simulated(key, ss))
         return self._windows(fs, ss)
+
+    def _simulated(self, key, ss) -> np.ndarray:
+        """The friction simulated along the path for the base and the stiffness ``key``, from
+        the last SIM_CACHE simulations where one matches: a finite-difference Jacobian perturbs
+        one parameter at a time, and every column of a level or a friction factor after one of
+        a stiffness (or of the base's n, σ1, S(v)) asks again for the unperturbed simulation."""
+        for i, (p, k, sim) in enumerate(self._sims):
+            if k == key and p == self.p:
+                self._sims.append(self._sims.pop(i))
+                return sim
+        sim = simulate_displacement(self.p, self.c.time, self.c.path, stiffness_scale=ss).friction_force
+        self._sims = self._sims[-(SIM_CACHE - 1):] + [(self.p, key, sim)]
+        self.sims += 1
+        return sim
 
     def _windows(self, fs, ss) -> np.ndarray:
         from ..model.windows import simulate_windows
@@ -1085,6 +1093,7 @@ class FitResult:
     model: np.ndarray = None  # the model alone: what the parameter set predicts
 
 
+SIM_CACHE = 4  # simulations the engine keeps (each one float per sample)
 FIT_SAMPLES = 6000  # residuals a least-squares step works on (an even subsample; the effects are slow)
 
 
@@ -1736,14 +1745,16 @@ class Diagnosis:
         for n in self.notes:
             L.append(f"  {n}")
         L.append(f"RMS gap, step by step ({u}): of the model written, and beside a free steady curve S(v) (what "
-                 f"the decision compares)")
+                 f"the decision compares)" + ("" if self.effects else "; nothing named: the model written is the "
+                                               "one given, the alternative a step of the comparison only"))
         nz = self.noise if self.noise > 0 else float("nan")
         for s in self.steps:
             L.append(f"  {s['label']:44s} {s['rms']:.4g} ({s['rms'] / nz:.2f} × noise)   "
                      f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
             if s.get("params"):
                 L.append("      " + format_values(s["name"], s["params"], self.params_before.units, s.get("sd")))
-        L.append("Per regime (RMS before → after the refit → final; the noise floor of that regime's samples):")
+        L.append("Per regime (RMS before → after the refit → final, the model written; the noise floor of that "
+                 "regime's samples):")
         for k, r in self.regimes.items():
             nr = r["noise"]
             tail = f"   noise {nr:.3g} ({r['rms_after'] / nr:.1f} ×)" if nr and math.isfinite(nr) else ""
@@ -1767,8 +1778,9 @@ class Diagnosis:
                 why += f"  — {c['unsettled']}"
             beside = f"  (beside {c['beside']})" if c.get("beside") else ""
             if not c.get("cross_validated", True):
-                L.append(f" {mark} {c['name']:20s} in-sample {-100 * c['reduction']:+5.1f} %: under half the threshold, "
-                         f"not cross-validated  ΔBIC {c['delta_bic']:10.1f}{beside}")
+                L.append(f" {mark} {c['name']:20s} in-sample RMS {-100 * c['reduction']:+5.1f} %: not cross-validated "
+                         f"(it takes {-100 * PRESCREEN * self.settings.min_gain:.1f} % or less)  "
+                         f"ΔBIC {c['delta_bic']:10.1f}{beside}")
                 continue
             L.append(f" {mark} {c['name']:20s} held-out RMS {-100 * c['heldout_gain']:+6.1f} %  folds "
                      f"{c['folds_improved']}/{c['folds_informative']}  in-sample {-100 * c['reduction']:+5.1f} %  "
@@ -2428,11 +2440,19 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"were {cmp_.inertia + d_i:.4g}, against the {cmp_.inertia:.4g} it was taken with (not "
                           f"written: a misfit of the model that follows the acceleration enters it too)")
     regimes = {}
+    # what the file written predicts: nothing named, it is the model as given (the base refitted
+    # alone is a step of the report, not the file: the diagnosis adds effects, `fit` makes bases)
+    after = final.pred if named else pred_given_c
+    if not named and _rms((meas - null.pred)[allm]) < (1.0 - CURVE_MIN_GAIN) * rms0:
+        cmp_.notes.append(f"nothing named, so the model written is the one given, which leaves {rms0:.4g}; the "
+                          f"base refitted alone (the alternative) leaves {_rms((meas - null.pred)[allm]):.4g} — "
+                          f"the base, not a missing effect, is what is off: fit it to this recording "
+                          f"(`leuven-friction fit`) or give --params closer to it")
     for k, m in regimes_m.items():
         m = m & allm
         if m.any():
             regimes[k] = {"n": int(m.sum()), "rms_before": _rms((meas - pred_given_c)[m]),
-                          "rms_base_refit": _rms((meas - null.pred)[m]), "rms_after": _rms((meas - final.pred)[m]),
+                          "rms_base_refit": _rms((meas - null.pred)[m]), "rms_after": _rms((meas - after)[m]),
                           "noise": cmp_.noise_on(m)}
     new_params = params  # nothing named: the model stays as it was
     if named:
@@ -2480,10 +2500,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         explaining["load"] = ("normal load", cmp_.load)
     say(1.0, "done")
     return Diagnosis(effects=named, steps=steps, confounded=confounded, candidates=cands_out, rms_before=rms0,
-                     rms_after=_rms((meas - final.pred)[allm]), rms_base_refit=_rms((meas - null.pred)[allm]), regimes=regimes,
+                     rms_after=_rms((meas - after)[allm]), rms_base_refit=_rms((meas - null.pred)[allm]), regimes=regimes,
                      space=cmp_.space, noise=cmp_.noise, notes=cmp_.notes, params_before=params,
                      params_after=new_params, settings=s, time=cmp_.time, measured=meas, model_before=pred_given_c,
-                     model_after=final.pred, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining,
+                     model_after=after, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining,
                      unused=unused)
 
 

@@ -389,13 +389,14 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         held["transition_curve"] = f"{why_curve}: kept {start}"
         held["n"] = f"{why_curve}: kept {start}"
     if all(d.fit is None for d in decisions.values()) and tfit is None:
+        files = ", ".join(str(pr.source) for pr in preps)
         if unresolved:
-            raise IdentificationError(f"nothing to fit: no constant-velocity levels, and {unresolved} (a finer "
+            raise IdentificationError(f"{files}: nothing to fit: no constant-velocity levels, and {unresolved} (a finer "
                                       f"position sensor, or --params to start from)")
         if unbounded:
-            raise IdentificationError(f"nothing to fit: no constant-velocity levels, and {why_curve} (the segments "
+            raise IdentificationError(f"{files}: nothing to fit: no constant-velocity levels, and {why_curve} (the segments "
                                       f"ran to their limit): more presliding cycles, or --params to start from")
-        raise IdentificationError("nothing to fit: the data hold neither constant-velocity levels nor presliding "
+        raise IdentificationError(f"{files}: nothing to fit: the data hold neither constant-velocity levels nor presliding "
                                   "branches (force ramps with reversals, or reversals of a motion with measured friction)"
                                   + "".join(f"; {pr.source}: {h}" for pr, lv in zip(preps, per_file)
                                             if (h := sign_hint(pr, lv))))
@@ -450,7 +451,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         "noise_models": {d.name: repr(d.noise) for d in datasets},
         "cost": cost,
         "held": dict(res.held),
-        "thresholds": {src: {ln.split("=")[0].strip(): ln.split("=", 1)[1].strip() for ln in th.lines()}
+        "thresholds": {src: {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in th.values().items()}
                        for src, th in res.thresholds.items()},
         "refinement": {k: v for k, v in res.refinement.items() if isinstance(v, (bool, int, float, str))},
         "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),

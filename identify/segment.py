@@ -135,14 +135,13 @@ class Thresholds:
             self.notes.append(f"{k} set to {v:g} by the user")
         return self
 
+    def values(self) -> dict:
+        """Every threshold by name, as the number (or text) it is: what the report prints and
+        the parameter file's provenance records."""
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name != "notes"}
+
     def lines(self) -> list[str]:
-        out = []
-        for f in fields(self):
-            if f.name in ("notes",):
-                continue
-            v = getattr(self, f.name)
-            out.append(f"{f.name:15s} = {v:.4g}" if isinstance(v, float) else f"{f.name:15s} = {v}")
-        return out
+        return [f"{k:15s} = {v:.4g}" if isinstance(v, float) else f"{k:15s} = {v}" for k, v in self.values().items()]
 
 
 @dataclass

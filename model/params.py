@@ -574,12 +574,13 @@ def _stribeck_from(st) -> Stribeck:
         sd = st.get(sname)
         if not isinstance(sd, Mapping):
             raise ParameterError(f"stribeck.{sname}: missing or not a mapping of {', '.join(names)}")
+        # an unknown field first: a misspelt one ('Fss') is also the one then missing
+        extra = sorted(str(k) for k in sd if k not in names)
+        if extra:
+            raise ParameterError(f"stribeck.{sname}.{extra[0]}: unknown field (known: {', '.join(names)})")
         for k in names:
             if k not in sd:
                 raise ParameterError(f"stribeck.{sname}.{k}: missing")
-        extra = sorted(str(k) for k in sd if k not in names)
-        if extra:
-            raise ParameterError(f"stribeck.{sname}.{extra[0]}: unknown field")
         sides[sname] = StribeckSide(**{k: _number(f"stribeck.{sname}.{k}", sd[k]) for k in names})
     return Stribeck(**sides)
 
@@ -767,3 +768,25 @@ def as_model(p: FrictionParams, model: str) -> FrictionParams:
 
         return p.replace(model="lugre", sigma0=lugre_sigma0_from_transition_curve(p)).validate()
     return p.replace(model=model).validate()
+
+
+SIDE_MARK = {"positive": "⁺", "negative": "⁻"}
+
+
+def sanity_warnings(p: FrictionParams) -> list[str]:
+    """Physically odd but valid parameter sets: said, not refused."""
+    out = []
+    for side in ("positive", "negative"):
+        s = getattr(p.stribeck, side)
+        if abs(s.Fc) > abs(s.Fs):
+            out.append(f"|Fc{SIDE_MARK[side]}| = {abs(s.Fc):.4g} > |Fs{SIDE_MARK[side]}| = {abs(s.Fs):.4g}: "
+                       "friction would rise with speed (no Stribeck dip)")
+        if s.delta > 5 or s.delta < 0.2:
+            out.append(f"δ{SIDE_MARK[side]} = {s.delta:.3g} is far outside the usual 0.5–2")
+    tc = p.transition_curve
+    if tc.kind == "piecewise_linear":
+        Fs = max(abs(p.stribeck.positive.Fs), abs(p.stribeck.negative.Fs))
+        if tc.F[-1] < 0.5 * Fs:
+            out.append(f"the transition curve ends at {tc.F[-1]:.4g}, well below |Fs| = {Fs:.4g}: "
+                       "presliding beyond the last knot follows its extended last segment")
+    return out

@@ -10,9 +10,8 @@ from dataclasses import dataclass
 
 from ...model import FrictionParams
 from ...model.errors import ParameterError
-from ...model.params import ParamSpec, get_value as _get, schema, with_value
+from ...model.params import SIDE_MARK, ParamSpec, get_value as _get, sanity_warnings, schema, with_value  # noqa: F401
 
-SIDE_MARK = {"positive": "⁺", "negative": "⁻"}
 MODELS = {"n": ("leuven",), "sigma1": ("leuven", "lugre"), "sigma0": ("lugre",)}
 
 
@@ -71,22 +70,3 @@ def check_field(f: Field, value: float) -> str | None:
     except ParameterError as e:
         return str(e)
     return None
-
-
-def sanity_warnings(p: FrictionParams) -> list[str]:
-    """Physically odd but valid parameter sets: said, not refused."""
-    out = []
-    for side in ("positive", "negative"):
-        s = getattr(p.stribeck, side)
-        if abs(s.Fc) > abs(s.Fs):
-            out.append(f"|Fc{SIDE_MARK[side]}| = {abs(s.Fc):.4g} > |Fs{SIDE_MARK[side]}| = {abs(s.Fs):.4g}: "
-                       "friction would rise with speed (no Stribeck dip)")
-        if s.delta > 5 or s.delta < 0.2:
-            out.append(f"δ{SIDE_MARK[side]} = {s.delta:.3g} is far outside the usual 0.5–2")
-    tc = p.transition_curve
-    if tc.kind == "piecewise_linear":
-        Fs = max(abs(p.stribeck.positive.Fs), abs(p.stribeck.negative.Fs))
-        if tc.F[-1] < 0.5 * Fs:
-            out.append(f"the transition curve ends at {tc.F[-1]:.4g}, well below |Fs| = {Fs:.4g}: "
-                       "presliding beyond the last knot follows its extended last segment")
-    return out

@@ -170,6 +170,11 @@ def test_fit_writes_the_units_of_the_data(tmp_path, capsys):
     p = yaml.safe_load((tmp_path / "p.yaml").read_text())
     assert p["units"] == {"position": "m", "force": "N", "time": "s"}
     assert abs(p["stribeck"]["positive"]["Fc"] - 27.0) < 1.0  # N, the same numbers as the sample's N·m
+    # the thresholds it derived are recorded as numbers, not as the report's text: the sample rate
+    # is the one of the file's time column
+    th = p["provenance"]["thresholds"][str(tmp_path / "stage.csv")]
+    assert isinstance(th["rate"], float) and th["rate"] == pytest.approx(1.0 / df["time"].diff().median(), rel=1e-6)
+    assert isinstance(th["window"], int) and isinstance(th["velocity_source"], str)
 
 
 def test_port_zero_picks_a_free_port_and_prints_it(tmp_path):
@@ -248,3 +253,44 @@ def test_simulate_refuses_a_mat_output_before_the_work(tmp_path, capsys):
     rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--out", out)
     assert rc == 2 and "o.mat: MATLAB files are read, not written" in one_line(err)
     assert list(tmp_path.iterdir()) == []  # nothing staged, nothing written
+
+
+def test_a_misspelt_field_inside_s_of_v_is_named_not_reported_missing(tmp_path, capsys):
+    d = default_params().to_dict()
+    d["stribeck"]["positive"]["Fss"] = d["stribeck"]["positive"].pop("Fs")
+    p = param_file(tmp_path, text=yaml.safe_dump(d))
+    rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--params", p, "--out", tmp_path / "o.csv")
+    assert rc == 2 and one_line(err) == (f"error: {p}: stribeck.positive.Fss: unknown field "
+                                         f"(known: Fs, Fc, vs, delta, sigma2)")
+    assert not (tmp_path / "o.csv").exists()
+
+
+def test_a_valid_but_odd_parameter_file_is_warned_about_on_the_command_line(tmp_path, capsys):
+    # |Fc| > |Fs|: friction rising with speed, no Stribeck dip — valid, run, and said on stderr
+    d = default_params().to_dict()
+    d["stribeck"]["positive"]["Fc"] = 2.0 * d["stribeck"]["positive"]["Fs"]
+    p = param_file(tmp_path, text=yaml.safe_dump(d))
+    rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--params", p, "--out", tmp_path / "o.csv")
+    assert rc == 0 and (tmp_path / "o.csv").exists()
+    warned = [ln for ln in err.splitlines() if ln.startswith(f"warning: {p}: ")]
+    assert len(warned) == 1 and "|Fc⁺| = 72 > |Fs⁺| = 36" in warned[0], err
+    # the paper's own parameters draw no warning
+    rc, _, err = run(capsys, "simulate", "--experiment", "abcd_ramp", "--params", param_file(tmp_path),
+                     "--out", tmp_path / "o2.csv")
+    assert rc == 0 and "warning" not in err
+
+
+def test_nothing_to_fit_names_the_file(tmp_path, capsys):
+    # a joint that never moves: an encoder at rest, a torque of noise — no level, no reversal
+    import numpy as np
+    import pandas as pd
+
+    rng = np.random.default_rng(0)
+    t = np.arange(2000) * 1e-3
+    pd.DataFrame({"time": t, "position": rng.normal(0.0, 1e-6, t.size), "torque": rng.normal(0.0, 0.05, t.size)}
+                 ).to_csv(tmp_path / "short.csv", index=False)
+    rc, _, err = run(capsys, "fit", tmp_path / "short.csv", "--out", tmp_path / "p.yaml")
+    errors = [ln for ln in err.splitlines() if ln.startswith("error:")]  # besides the progress lines
+    assert rc == 2 and len(errors) == 1 and f"{tmp_path / 'short.csv'}: nothing to fit" in errors[0], err
+    assert "Traceback" not in err
+    assert not (tmp_path / "p.yaml").exists()

@@ -32,6 +32,25 @@ def test_clean_recording_names_nothing_and_keeps_the_model(tmp_path):
     base = oracle_params(truth)
     d = diagnose(to_recording(df, "clean.csv"), base)
     assert d.effects == [] and d.params_after is base, d.text()
+    # the gap stated after is the file's that is written — the one given — not the alternative's
+    assert d.rms_after == d.steps[0]["rms"] and np.array_equal(d.model_after, d.model_before)
+
+
+def test_a_base_off_by_half_is_returned_as_given_and_said_to_be_off():
+    # S(v) levels 1.5 × the machine's: the level the alternative refits takes that up, no effect
+    # is named, the file written is the one given, and the report says the base is what is off
+    import dataclasses
+
+    from leuven_friction.model import Stribeck
+
+    df, truth, case = make_case("tribometer", 4243, ())
+    base = oracle_params(truth)
+    off = base.replace(stribeck=Stribeck(*(dataclasses.replace(sd, Fs=1.5 * sd.Fs, Fc=1.5 * sd.Fc)
+                                           for sd in (base.stribeck.positive, base.stribeck.negative))))
+    d = diagnose(to_recording(df, "clean.csv"), off)
+    assert d.effects == [] and d.params_after is off, d.text()
+    assert d.rms_after == d.steps[0]["rms"] > 10 * d.steps[1]["rms"], d.text()
+    assert any("the base, not a missing effect, is what is off" in n for n in d.notes), d.text()
 
 
 def test_diagnose_cli_writes_json_html_yaml_that_simulate_reproduces(tmp_path):

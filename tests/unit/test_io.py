@@ -323,3 +323,11 @@ def test_a_signal_can_be_taken_from_no_column(tmp_path):
     assert load_recording(words, columns={"force": None}).force is None
     with pytest.raises(DataError, match=r"words.csv: no column for time"):
         load_recording(words, columns={"time": None})
+
+
+def test_a_unit_taken_from_a_name_is_said_as_the_header_spells_it(tmp_path):
+    path = tmp_path / "u.csv"
+    path.write_text("time_ms,x_mm,friction_mN\n" + "".join(f"{i},{i * 2},{i * 3}\n" for i in range(40)))
+    rec = load_recording(path)
+    assert "friction_mN: converted from mN to N" in rec.notes and "x_mm: converted from mm to m" in rec.notes
+    np.testing.assert_allclose(rec.friction, 3e-3 * np.arange(40.0), rtol=1e-12)
