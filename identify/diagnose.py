@@ -2443,9 +2443,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # what the file written predicts: nothing named, it is the model as given (the base refitted
     # alone is a step of the report, not the file: the diagnosis adds effects, `fit` makes bases)
     after = final.pred if named else pred_given_c
-    if not named and _rms((meas - null.pred)[allm]) < (1.0 - CURVE_MIN_GAIN) * rms0:
+    rms_alt = _rms((meas - null.pred)[allm])
+    if not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0:
         cmp_.notes.append(f"nothing named, so the model written is the one given, which leaves {rms0:.4g}; the "
-                          f"base refitted alone (the alternative) leaves {_rms((meas - null.pred)[allm]):.4g} — "
+                          f"base refitted alone (the alternative) leaves {rms_alt:.4g} — "
                           f"the base, not a missing effect, is what is off: fit it to this recording "
                           f"(`leuven-friction fit`) or give --params closer to it")
     for k, m in regimes_m.items():
@@ -2500,7 +2501,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         explaining["load"] = ("normal load", cmp_.load)
     say(1.0, "done")
     return Diagnosis(effects=named, steps=steps, confounded=confounded, candidates=cands_out, rms_before=rms0,
-                     rms_after=_rms((meas - after)[allm]), rms_base_refit=_rms((meas - null.pred)[allm]), regimes=regimes,
+                     rms_after=_rms((meas - after)[allm]), rms_base_refit=rms_alt, regimes=regimes,
                      space=cmp_.space, noise=cmp_.noise, notes=cmp_.notes, params_before=params,
                      params_after=new_params, settings=s, time=cmp_.time, measured=meas, model_before=pred_given_c,
                      model_after=after, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining,
