@@ -387,7 +387,7 @@ def recording_figure(*, name: str, t, position, friction, friction_label: str, u
                              marker=dict(color="black", size=6, symbol="diamond"), name="levels found", showlegend=False,
                              error_y=dict(array=np.sqrt(levels.variance), thickness=1)))
         nlev = 0 if levels is None else len(levels.velocity)
-        ann.append(dict(_ANN, x=0.0, y=0.43, text=f"<b>Friction vs velocity</b> — {nlev} constant-velocity levels found"))
+        ann.append(dict(_ANN, x=0.0, y=0.43, text=f"<b>Friction vs velocity</b> — {nlev} levels of S(v) found"))
     if position is not None and friction is not None and velocity is not None:
         wins = reversal_windows(position, velocity)
         for i, (a, b) in enumerate(wins):

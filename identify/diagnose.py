@@ -81,8 +81,7 @@ from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
 from .data import DataError, Recording
 from .errors import IdentificationError
-from .markov import Levels
-from .segment import local_slope
+from .segment import gross_sliding_mask, local_slope, speed_levels, steady_velocity_mask
 
 
 INFORMATIVE = 0.01  # a held-out fold counts if the candidate moves its SSE by this fraction
@@ -1880,38 +1879,18 @@ def observed_presliding_range(cmp_: Comparison) -> float | None:
 
 
 def gross_sliding(cmp_: Comparison) -> np.ndarray:
-    """Samples in gross sliding: moving, and more than twice the presliding range travelled
-    since the velocity last changed sign, so the transition curve no longer matters and the
-    friction is S(v) times whatever effect acts."""
-    v, x = cmp_.velocity, cmp_.path
-    moving = np.abs(v) > cmp_.v_rest
-    sgn = np.where(moving, np.sign(v), 0.0)
-    # the sign of the last moving sample, carried over rests
-    idx = np.maximum.accumulate(np.where(moving, np.arange(len(v)), 0))
-    carried = sgn[idx]
-    start = np.r_[True, carried[1:] != carried[:-1]]
-    run_start = np.maximum.accumulate(np.where(start, np.arange(len(v)), 0))
-    travelled = np.abs(x - x[run_start])
-    return moving & (travelled > 2.0 * cmp_.z_presliding)
-
-
-STEADY_TOL = 0.05  # relative change of velocity across a window that still counts as steady
+    """Samples in gross sliding (``segment.gross_sliding_mask``) of the compared path, beyond
+    twice the presliding range the comparison takes."""
+    return gross_sliding_mask(cmp_.path, cmp_.velocity, cmp_.v_rest, cmp_.z_presliding)
 
 
 def steady_sliding(cmp_: Comparison) -> np.ndarray:
-    """Gross sliding at a steady velocity: over a window each side (the path's smoothing and
-    the averaging, at least 5 samples) the velocity changes by less than 5 % plus three
-    velocity noise sds. There the friction is S(v) times the effects, with no transient of
-    the motion (a controller settling, a turn) whose misfit a time-ordered schedule could
-    pass off as an effect."""
-    v = cmp_.velocity
+    """Gross sliding at a steady velocity (``segment.steady_velocity_mask``, over a window each
+    side of the path's smoothing and the averaging, at least 5 samples). There the friction is
+    S(v) times the effects, with no transient of the motion (a controller settling, a turn)
+    whose misfit a time-ordered schedule could pass off as an effect."""
     w = max(cmp_.window, 2 * cmp_.average, 5)
-    tol = STEADY_TOL * np.abs(v) + cmp_.v_rest
-    ok = np.ones(len(v), dtype=bool)
-    ok[:w] = ok[-w:] = False
-    ok[w:] &= np.abs(v[w:] - v[:-w]) <= tol[w:]
-    ok[:-w] &= np.abs(v[:-w] - v[w:]) <= tol[:-w]
-    return gross_sliding(cmp_) & ok
+    return gross_sliding(cmp_) & steady_velocity_mask(cmp_.velocity, w, cmp_.v_rest)
 
 
 @dataclass(frozen=True)
@@ -2509,36 +2488,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written
-STEADY_BIN = math.log(1.2)  # steady sliding pooled into speed levels this wide in log|v| (``steady_levels``)
-STEADY_MIN_SAMPLES = 10  # … a level needs this many samples
 STEADY_MIN_GAIN = 0.25  # S(v) re-identified for the model written only if it leaves this much less steady gap
 STEADY_MISFIT = 2.0  # … and the file's leaves more than this many times the levels' noise
-
-
-def steady_levels(velocity: np.ndarray, y: np.ndarray, mask: np.ndarray, corr_length: int) -> Levels:
-    """Constant-velocity levels (the Markov estimator's input, section IV-A) from the samples of
-    steady sliding ``mask``: per direction, pooled in bins of STEADY_BIN in log|v|, each level's
-    mean speed and mean ``y`` with the variance of that mean over its ``corr_length``-sample
-    stretches (neighbouring samples of averaged friction are not independent)."""
-    out = [[], [], [], []]
-    for sign in (1.0, -1.0):
-        m = mask & (velocity * sign > 0)
-        if not m.any():
-            continue
-        lv = np.log(np.abs(velocity[m]))
-        b = np.floor((lv - lv.min()) / STEADY_BIN).astype(np.int64)
-        for k in np.unique(b):
-            sel = b == k
-            cnt = int(sel.sum())
-            if cnt < STEADY_MIN_SAMPLES:
-                continue
-            yy = y[m][sel]
-            n_eff = max(2.0, cnt / max(corr_length, 1))
-            out[0].append(float(np.mean(velocity[m][sel])))
-            out[1].append(float(np.mean(yy)))
-            out[2].append(float(np.var(yy, ddof=1)) / n_eff)
-            out[3].append(cnt)
-    return Levels(*(np.array(o, dtype=float) for o in out))
 
 
 @dataclass(frozen=True)
@@ -2575,7 +2526,7 @@ def steady_stribeck(params: FrictionParams, cmp_: Comparison, factor: np.ndarray
     if params.model != "leuven" or cmp_.space != "friction":
         return None
     y = cmp_.measured / np.where(factor != 0, factor, 1.0)
-    levels = steady_levels(cmp_.velocity, y, mask, max(cmp_.window, cmp_.average))
+    levels = speed_levels(cmp_.velocity, y, mask, max(cmp_.window, cmp_.average))
     if len(levels.velocity) == 0:
         return None
     sides, gap_file, gap_new, anew, held = [], 0.0, 0.0, [], {}

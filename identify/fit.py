@@ -23,9 +23,10 @@ from ..model.params import get_value, spec_of
 
 from .data import Recording
 from .errors import IdentificationError
-from .markov import NAMES, Levels, fit_side_honest
+from .markov import NAMES, Levels, distinct_speeds, fit_side_honest
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .segment import Prepared, constant_velocity_levels, force_branches, motion_branches, noise_sd, prepare
+from .segment import (GROSS_SLIDING, Prepared, constant_velocity_levels, crossing_range, crossings, force_branches,
+                      motion_branches, noise_sd, prepare, sliding_levels)
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
 RESOLVED = 2.0  # position-noise σ (or encoder steps) a displacement must exceed to be told from none
@@ -83,6 +84,48 @@ def sign_hint(prep: Prepared, levels: Levels) -> str:
     return (f"every steady run's friction ({levels.opposing}) opposes its velocity with the friction "
             f"taken as {taken}: the column likely has the other sign (--friction-sign auto detects it, or force "
             f"the other one)")
+
+
+MIN_RANGE_BRANCHES = 3  # reversals whose crossings bound the presliding range for ``with_sliding_levels``
+
+
+def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
+    """A recording's levels where it holds no speed sweep — in neither direction do its
+    constant-velocity levels show two distinct speeds (none, or a sinusoidal stroke's top:
+    S(v) + σ2·v at one speed) — each direction taken instead from its steady gross sliding
+    (``segment.sliding_levels``) where that shows more speeds, and what was done, in words
+    ("" if nothing). Gross sliding starts past twice the
+    presliding range, the median travel over which the friction crossed to sliding after a
+    reversal (``segment.crossing_range``; at least MIN_RANGE_BRANCHES crossings). The paper's
+    Markov estimator takes constant-velocity runs; a recording made without them (a
+    crank-driven tribometer, a sinusoidal force) still shows S(v) wherever its velocity changes
+    slowly against the friction's lag, and that is used instead of holding one speed's value
+    or another machine's S(v)."""
+    sides = {1.0: "positive", -1.0: "negative"}
+    few = [s for s in sides if distinct_speeds(levels.velocity[levels.velocity * s > 0]) < 2]
+    if len(few) < 2 or prep.friction is None:
+        # a sweep in one direction: the other's few levels are what its runs give (a load or a
+        # temperature moving along the session can break its runs; the sliding would pool over it)
+        return levels, ""
+    ranges = [r for c in crossings(prep) if math.isfinite(r := crossing_range(c, prep.th))]
+    if len(ranges) < MIN_RANGE_BRANCHES:
+        return levels, ""
+    z_range = float(np.median(ranges))
+    extra = sliding_levels(prep, z_range)
+    taken = [s for s in few if distinct_speeds(extra.velocity[extra.velocity * s > 0])
+             > distinct_speeds(levels.velocity[levels.velocity * s > 0])]
+    if not taken:
+        return levels, ""
+    mine = np.isin(np.sign(levels.velocity), taken)
+    new = np.isin(np.sign(extra.velocity), taken)
+    arrays = (np.concatenate([getattr(levels, k)[~mine], getattr(extra, k)[new]])
+              for k in ("velocity", "friction", "variance", "count"))
+    words = " and ".join(f"{sides[s]} velocity ({distinct_speeds(levels.velocity[levels.velocity * s > 0])} distinct "
+                         f"speed(s) held constant)" for s in taken)
+    return (Levels(*arrays, opposing=levels.opposing, creep=levels.creep),
+            f"{words}: S(v) from {int(new.sum())} speed level(s) of steady gross sliding instead (past "
+            f"{GROSS_SLIDING:g} × {z_range:.3g} of travel after each reversal, the median range over which the "
+            f"friction crossed to sliding; the velocity changing by under 5 % over that range; binned in log|v|)")
 
 
 MAX_BRANCHES, MAX_POINTS = 10, 100
@@ -175,8 +218,8 @@ class UnresolvedCurve(IdentificationError):
     """The presliding branches reach no further than two position-noise σ (or encoder steps):
     the transition curve's abscissas cannot be placed; ``reach`` is how far they went."""
 
-    def __init__(self, reach: float, resolution: float):
-        super().__init__(f"the presliding displacement range ({reach:.3g}) is within two position-noise σ "
+    def __init__(self, reach: float, resolution: float, limit: str = "two position-noise σ"):
+        super().__init__(f"the presliding displacement range ({reach:.3g}) is within {limit} "
                          f"({resolution:.3g}): the transition curve cannot be resolved")
         self.reach, self.resolution = reach, resolution
 
@@ -252,13 +295,18 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             raise IdentificationError(str(e) if str(e).startswith(r.source) else f"{r.source}: {e}") from None
     for pr in preps:
         notes.extend(f"{pr.source}: {m}" for m in pr.notes + pr.th.notes)
-    per_file = [constant_velocity_levels(pr) for pr in preps]
-    levels = _merge_levels(per_file)
-    for pr, lv in zip(preps, per_file):
+    per_file = []
+    for pr in preps:
+        lv = constant_velocity_levels(pr)
         hint = sign_hint(pr, lv)
         notes.append(f"{pr.source}: {len(lv.velocity)} constant-velocity level(s) "
                      f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)"
                      + left_out(lv) + (f"; {hint}" if hint else ""))
+        lv, filled = with_sliding_levels(pr, lv)
+        if filled:
+            notes.append(f"{pr.source}: {filled}")
+        per_file.append(lv)
+    levels = _merge_levels(per_file)
 
     # --- S(v): Markov estimator per side, honest about what the levels determine ------------
     say(0.2, f"Markov estimator on {len(levels.velocity)} levels")
@@ -285,6 +333,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     # --- presliding: both kinds of branches, one likelihood --------------------------------
     say(0.4, "finding presliding branches")
     datasets = []
+    short = []  # (crossing range, resolution) of recordings whose reversals resolve no presliding
     slow = np.min(np.abs(levels.velocity)) if len(levels.velocity) else np.inf
     for pr in preps:
         # presliding ends where gross sliding begins: below the slowest level; without levels
@@ -301,7 +350,15 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             ds = PreslidingData(mb, Gaussian(pr.th.f_noise), name=f"{pr.source} (motion-driven)")
             ds.x_noise = getattr(pr.position_noise, "step", None) or max(pr.th.x_noise, 1e-300)
             datasets.append(ds)
-        if not fb and not mb:
+        seen = [] if fb or mb else [r for c in crossings(pr) if math.isfinite(r := crossing_range(c, pr.th))]
+        if len(seen) >= MIN_RANGE_BRANCHES:
+            # reversals whose crossing to sliding is over within the turn threshold: presliding
+            # the position sensor does not resolve (a contact that sticks, then slips)
+            short.append((float(np.median(seen)), pr.th.x_turn))
+            notes.append(f"{pr.source}: no presliding branches: {len(seen)} reversals of the motion, each crossing to "
+                         f"sliding within {short[-1][0]:.3g} (median), under the turn threshold x_turn "
+                         f"{pr.th.x_turn:.3g}")
+        elif not fb and not mb:
             notes.append(f"{pr.source}: no presliding branches (no applied-force ramps with reversals in presliding, "
                          f"no reversals of a prescribed motion with measured friction)")
         else:
@@ -326,6 +383,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             n_br = 0
     elif n_br:
         z = check_knots(knots, datasets)
+    elif short and knots is None:
+        unresolved = UnresolvedCurve(max(r for r, _ in short), min(q for _, q in short), "the turn threshold x_turn")
+        notes.append(f"transition curve: {unresolved} (held, not estimated)")
     if n_br:
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
         tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
@@ -527,7 +587,7 @@ def fit_report(res: FitResult) -> str:
     u = res.params.units
     lines.append(f"    units                    : position {u.get('position')}, force {u.get('force')}, time {u.get('time')}")
     if res.levels is not None:
-        lines.append(f"    constant-velocity levels : {len(res.levels.velocity)}")
+        lines.append(f"    levels of S(v)           : {len(res.levels.velocity)}")
     lines.append(f"    presliding branches      : {res.n_branches}")
     for side, dec in res.decisions.items():
         if dec.fit is not None:

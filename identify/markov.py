@@ -204,6 +204,14 @@ def with_delta_spread(fit: SideFit, levels: Levels, sign: int) -> SideFit:
     return SideFit(fit.values, stderr, fit.correlation, fit.chi2, fit.dof, fit.names, notes)
 
 
+def distinct_speeds(speed: np.ndarray) -> int:
+    """How many distinct speeds the levels hold: levels repeated at one commanded speed (within
+    10 %) count once."""
+    if not len(speed):
+        return 0
+    return 1 + int(np.sum(np.diff(np.sort(np.log(np.abs(speed)))) > np.log(1.1)))
+
+
 def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> SideDecision:
     """Fit what the levels of one side determine, hold the rest with a stated reason.
 
@@ -217,8 +225,7 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
     held = {}
     if k == 0:
         return SideDecision(None, {n: "no constant-velocity levels on this side" for n in NAMES}, "held")
-    # distinct speeds (levels repeated at one commanded speed count once): within 10 %
-    speeds = 1 + int(np.sum(np.diff(np.sort(np.log(a))) > np.log(1.1)))
+    speeds = distinct_speeds(a)
     if k >= 6 and speeds >= 4:
         fit = fit_side(levels, sign)
         below = int(np.sum(a < abs(fit.values["vs"])))

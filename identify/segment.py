@@ -16,6 +16,7 @@ user can override by name (``fit --threshold v_floor=1e-4``).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, fields
 
 import numpy as np
@@ -404,6 +405,93 @@ def sliding_only(levels: Levels) -> Levels:
                   opposing=levels.opposing, creep=levels.creep + int(np.sum(~keep)))
 
 
+SPEED_BIN = math.log(1.2)  # sliding pooled into speed levels this wide in log|v| (``speed_levels``)
+SPEED_MIN_SAMPLES = 10  # … a level needs this many samples
+STEADY_TOL = 0.05  # relative change of velocity across a window that still counts as steady
+GROSS_SLIDING = 2.0  # gross sliding: this many presliding ranges travelled since the velocity's sign changed
+
+
+def gross_sliding_mask(x: np.ndarray, v: np.ndarray, v_rest: float, z_range: float) -> np.ndarray:
+    """Samples in gross sliding: moving (|v| > ``v_rest``), and more than GROSS_SLIDING
+    presliding ranges ``z_range`` travelled since the velocity last changed sign, so the
+    transition curve no longer matters and the friction is S(v) times whatever effect acts."""
+    moving = np.abs(v) > v_rest
+    sgn = np.where(moving, np.sign(v), 0.0)
+    # the sign of the last moving sample, carried over rests
+    idx = np.maximum.accumulate(np.where(moving, np.arange(len(v)), 0))
+    carried = sgn[idx]
+    start = np.r_[True, carried[1:] != carried[:-1]]
+    run_start = np.maximum.accumulate(np.where(start, np.arange(len(v)), 0))
+    travelled = np.abs(x - x[run_start])
+    return moving & (travelled > GROSS_SLIDING * z_range)
+
+
+def steady_velocity_mask(v: np.ndarray, w: int, v_rest: float) -> np.ndarray:
+    """Samples whose velocity changes, over ``w`` samples each side, by less than STEADY_TOL of
+    itself plus ``v_rest``: there the hysteresis force has caught up with S(v) (it lags the
+    velocity by about a presliding range of travel), whether the run is a constant-velocity
+    level or the slow middle of a sinusoidal stroke."""
+    tol = STEADY_TOL * np.abs(v) + v_rest
+    ok = np.ones(len(v), dtype=bool)
+    ok[:w] = ok[-w:] = False
+    ok[w:] &= np.abs(v[w:] - v[:-w]) <= tol[w:]
+    ok[:-w] &= np.abs(v[:-w] - v[w:]) <= tol[:-w]
+    return ok
+
+
+def speed_levels(velocity: np.ndarray, y: np.ndarray, mask: np.ndarray, corr_length: int) -> Levels:
+    """Levels of S(v) (the Markov estimator's input, section IV-A) from the samples of steady
+    sliding ``mask``: per direction, pooled in bins of SPEED_BIN in log|v|, each level's mean
+    speed and mean ``y`` with the variance of that mean over its ``corr_length``-sample
+    stretches (neighbouring samples of averaged friction are not independent)."""
+    out = [[], [], [], []]
+    for sign in (1.0, -1.0):
+        m = mask & (velocity * sign > 0)
+        if not m.any():
+            continue
+        lv = np.log(np.abs(velocity[m]))
+        b = np.floor((lv - lv.min()) / SPEED_BIN).astype(np.int64)
+        for k in np.unique(b):
+            sel = b == k
+            cnt = int(sel.sum())
+            if cnt < SPEED_MIN_SAMPLES:
+                continue
+            yy = y[m][sel]
+            n_eff = max(2.0, cnt / max(corr_length, 1))
+            out[0].append(float(np.mean(velocity[m][sel])))
+            out[1].append(float(np.mean(yy)))
+            out[2].append(float(np.var(yy, ddof=1)) / n_eff)
+            out[3].append(cnt)
+    return Levels(*(np.array(o, dtype=float) for o in out))
+
+
+def sliding_levels(prep: Prepared, z_range: float) -> Levels:
+    """Levels of S(v) for a recording with no runs of constant velocity (a crank-driven
+    tribometer, a sinusoidal applied force): its measured friction in gross sliding
+    (``gross_sliding_mask`` beyond ``z_range``, the presliding range its reversals show) where
+    the velocity changes by less than STEADY_TOL of itself (plus ``v_floor``) while the contact
+    travels one presliding range — the hysteresis force lags S(v) by about that travel, so
+    there it has caught up — pooled by speed (``speed_levels``). A level whose friction
+    opposes its velocity is left out (sliding dissipates). Empty without a measured friction:
+    an applied force would need the inertia, which this fit does not estimate."""
+    if prep.friction is None or not z_range > 0:
+        return Levels(*(np.zeros(0) for _ in range(4)))
+    th, x, t, v = prep.th, prep.rec.position, prep.rec.time, prep.velocity
+    mask = np.zeros(len(v), dtype=bool)
+    for a, b in prep.chunks:
+        if b - a < 3:
+            continue
+        vv = v[a:b]
+        dt = float(np.median(np.diff(t[a:b])))
+        acc = moving_average(np.gradient(vv, t[a:b]), max(th.window, 3))
+        lag = np.maximum(z_range / np.maximum(np.abs(vv), 1e-300), dt)  # the time one presliding range takes
+        steady = np.abs(acc) * lag <= STEADY_TOL * np.abs(vv) + th.v_floor
+        mask[a:b] = gross_sliding_mask(x[a:b], vv, th.v_floor, z_range) & steady
+    lv = speed_levels(v, prep.friction, mask & prep.usable, th.window)
+    keep = lv.friction * lv.velocity > 0
+    return Levels(*(a[keep] for a in (lv.velocity, lv.friction, lv.variance, lv.count)), opposing=int(np.sum(~keep)))
+
+
 @njit(cache=True)
 def turning_points(s, h):
     """Indices of alternating extrema of ``s``, each confirmed by a move of ``h`` away
@@ -510,12 +598,23 @@ def force_branches(prep: Prepared, Fs_pos: float, Fs_neg: float, v_max: float, *
     return out
 
 
-def motion_branches(prep: Prepared, *, min_points: int = 5) -> list[Branch]:
-    """Reversals of a prescribed motion with measured friction. After each reversal (a
-    position extremum confirmed by ``x_turn``) the friction crosses from the old sliding
-    level F_b towards the new one; the crossing, up to 90 % of the way, is one branch with
-    the displacement from the reversal as input and the friction change as the measured
-    output. D = new level − F_b (eq. (5) at the sliding velocity reached)."""
+@dataclass(frozen=True)
+class Crossing:
+    """After a reversal of a prescribed motion (a position extremum confirmed by ``x_turn``),
+    the friction's crossing from the old sliding level F_b towards the new one: from the
+    sample leaving the reversal to the next turning point, the friction change ``dF`` and the
+    displacement ``dx``, both positive in the new direction; ``D`` = new level − F_b, the
+    level being the median friction over the middle third of the stroke."""
+
+    dF: np.ndarray
+    dx: np.ndarray
+    D: float
+
+
+def crossings(prep: Prepared) -> list[Crossing]:
+    """Every crossing of the recording whose swing D is at least 20 friction-noise sds and
+    whose stroke has a usable middle third of at least 5 samples (none without a measured
+    friction)."""
     rec, th = prep.rec, prep.th
     if prep.friction is None:
         return []
@@ -546,11 +645,48 @@ def motion_branches(prep: Prepared, *, min_points: int = 5) -> list[Branch]:
             D = direction * (level - Fb)
             if D < 20 * th.f_noise:
                 continue
-            dF = direction * (F[s:nxt] - Fb)
-            dx = direction * (x[s:nxt] - x[s])
-            past = np.flatnonzero(dF > 0.9 * D)
-            m = int(past[0]) if len(past) else 0
-            if m < min_points or dx[m - 1] <= th.x_turn:
-                continue
-            out.append(Branch(force=dF[:m], displacement=dx[:m], D=float(D), driven="motion"))
+            out.append(Crossing(dF=direction * (F[s:nxt] - Fb), dx=direction * (x[s:nxt] - x[s]), D=float(D)))
     return out
+
+
+PEAK_DROP = 0.05  # of the swing D (and at least 3 friction-noise sds): a fall from a crossing's peak that ends it
+
+
+def crossing_end(c: Crossing, th: Thresholds) -> tuple[int, float]:
+    """Where a crossing has caught up with sliding, and its swing there: the first sample past
+    90 % of the swing D to the stroke's level — or, where the friction falls back from a peak
+    first (F_s above the sliding friction reached: a contact that sticks, then slips), past
+    90 % of the swing to that peak. On a stroke whose speed keeps rising (a sinusoidal one with
+    viscous friction) the level lies far beyond the end of presliding, and a crossing run to it
+    is gross sliding. The peak is sought on the friction averaged over the smoothing window, so
+    that noise about a flat top makes none. (0, D) if it never gets there."""
+    D = c.D
+    past = np.flatnonzero(c.dF > 0.9 * D)
+    smooth = moving_average(c.dF, max(th.window, 3))
+    top = np.maximum.accumulate(smooth)
+    fell = np.flatnonzero(top - smooth > max(PEAK_DROP * D, 3.0 * th.f_noise))
+    if len(fell) and (not len(past) or fell[0] < past[0]):
+        D = float(np.max(smooth[:fell[0] + 1]))
+        past = np.flatnonzero(c.dF > 0.9 * D)
+    return (int(past[0]) if len(past) else 0), D
+
+
+def motion_branches(prep: Prepared, *, min_points: int = 5) -> list[Branch]:
+    """Reversals of a prescribed motion with measured friction (``crossings``): each crossing,
+    up to its end (``crossing_end``), is one branch with the displacement from the reversal as
+    input and the friction change as the measured output. D = the swing to where sliding
+    takes over (eq. (5) at the sliding velocity reached)."""
+    out = []
+    for c in crossings(prep):
+        m, D = crossing_end(c, prep.th)
+        if m < min_points or c.dx[m - 1] <= prep.th.x_turn:
+            continue
+        out.append(Branch(force=c.dF[:m], displacement=c.dx[:m], D=D, driven="motion"))
+    return out
+
+
+def crossing_range(c: Crossing, th: Thresholds) -> float:
+    """How far a crossing travels before the friction has caught up with sliding
+    (``crossing_end``); nan if it never does."""
+    m, _ = crossing_end(c, th)
+    return float(c.dx[m]) if m else math.nan

@@ -1,0 +1,114 @@
+"""A recording with no constant-velocity run: a rigid stick-slip contact under a sinusoidal
+applied force, made by a simulator of its own here (semi-implicit Euler, friction equal to the
+applied force while stuck, S(v) with a Gaussian Stribeck term and viscous friction while
+sliding), with parameters far from the paper's and the friction measured directly. The
+Markov estimator's levels come from steady gross sliding binned by speed
+(``segment.sliding_levels``); the presliding the contact has not (it sticks rigidly) is said
+to be unresolved, and the transition curve held."""
+
+import numpy as np
+import pytest
+
+from leuven_friction.identify.data import load_recording
+from leuven_friction.identify.fit import fit_recordings
+from leuven_friction.identify.segment import Crossing, Thresholds, crossing_end
+from leuven_friction.model.simulate import stribeck_curve
+
+MASS, FC, FS, VS, SIGMA2 = 0.8, 3.2, 4.1, 2e-3, 12.0  # kg, N, N, m/s, N·s/m
+AMPLITUDE, FREQ, DT, DURATION = 6.0, 1.3, 5e-4, 12.0  # N, Hz, s, s
+
+
+def stick_slip(seed: int):
+    rng = np.random.default_rng(seed)
+    t = np.arange(int(DURATION / DT)) * DT
+    applied = AMPLITUDE * np.sin(2 * np.pi * FREQ * t)
+    x = np.zeros(len(t))
+    friction = np.zeros(len(t))
+    xi = vi = 0.0
+    for i, fa in enumerate(applied):
+        if vi == 0.0 and abs(fa) <= FS:
+            fr, vn = fa, 0.0  # stuck: the friction holds the applied force
+        else:
+            s = np.sign(vi) if vi != 0.0 else np.sign(fa)
+            fr = s * (FC + (FS - FC) * np.exp(-(vi / VS) ** 2)) + SIGMA2 * vi
+            vn = vi + DT * (fa - fr) / MASS
+            if vi != 0.0 and np.sign(vn) != np.sign(vi):
+                vn = 0.0  # the velocity crossing zero sticks
+        xi += DT * vn
+        vi = vn
+        x[i], friction[i] = xi, fr
+    return t, x + rng.normal(0, 2e-7, len(t)), friction + rng.normal(0, 0.01, len(t))
+
+
+def _csv(cols, header) -> bytes:
+    return ("\n".join([",".join(header)] + [",".join(repr(float(c)) for c in row) for row in zip(*cols)]) + "\n").encode()
+
+
+@pytest.fixture(scope="module")
+def fits():
+    t, x, f = stick_slip(3)
+    si = fit_recordings([load_recording(_csv([t, x, f], ["time [s]", "position [m]", "friction [N]"]), name="si.csv")])
+    mm = fit_recordings([load_recording(_csv([t * 1e3, x * 1e3, f * 1e3], ["time [ms]", "position [mm]", "friction [mN]"]),
+                                        name="mm.csv")])
+    return si, mm
+
+
+def test_s_of_v_is_estimated_from_the_sliding_and_recovers_the_truth(fits):
+    si, _ = fits
+    assert any("speed level(s) of steady gross sliding" in n for n in si.notes), si.notes
+    for side, sign in (("positive", 1), ("negative", -1)):
+        s = getattr(si.params.stribeck, side)
+        for k, truth in (("Fc", sign * FC), ("sigma2", SIGMA2)):
+            sd = si.params.uncertainty[f"stribeck.{side}.{k}"]
+            assert abs(getattr(s, k) - truth) < 3 * sd, (side, k, getattr(s, k), truth, sd)
+            assert sd < 0.05 * abs(truth)  # an estimate, not a guess
+    # over the speeds the strokes hold steadily the curve written is the true one (its Stribeck
+    # term has died out there: the slowest level is ≈ 8·v_s, and v_s is held, not estimated)
+    v = si.levels.velocity
+    assert np.min(np.abs(v)) > 5 * VS and "stribeck.positive.vs" in si.held
+    true = np.sign(v) * (FC + (FS - FC) * np.exp(-(v / VS) ** 2)) + SIGMA2 * v
+    assert np.max(np.abs(stribeck_curve(si.params, v) - true) / np.abs(true)) < 0.01
+
+
+def test_a_contact_that_sticks_rigidly_holds_its_transition_curve_as_unresolved(fits):
+    si, _ = fits
+    assert si.n_branches == 0
+    assert "transition_curve" in si.held and "resolve" in si.held["transition_curve"], si.held.get("transition_curve")
+    assert not any(k.startswith("transition_curve") for k in si.params.uncertainty)
+    # held at this machine's scale: F_d tops at F_s⁺ − F_s⁻ of the fit, not the paper's 100 N·m
+    top = si.params.stribeck.positive.Fs - si.params.stribeck.negative.Fs
+    assert si.params.transition_curve.F[-1] == pytest.approx(top)
+
+
+def test_the_same_recording_in_mm_ms_and_mN_gives_the_same_physics(fits):
+    si, mm = fits
+    assert si.held.keys() == mm.held.keys()
+    for side in ("positive", "negative"):
+        a, b = getattr(si.params.stribeck, side), getattr(mm.params.stribeck, side)
+        assert b.Fc == pytest.approx(a.Fc, rel=1e-3)  # loaded back in N
+        assert b.sigma2 == pytest.approx(a.sigma2, rel=1e-3)  # N·s/m
+        assert mm.params.uncertainty[f"stribeck.{side}.Fc"] == pytest.approx(si.params.uncertainty[f"stribeck.{side}.Fc"], rel=0.05)
+
+
+def _th(window=11, f_noise=0.01):
+    return Thresholds(window=window, f_noise=f_noise)
+
+
+def test_a_crossing_ends_at_its_peak_when_the_friction_falls_back_before_the_stroke_level():
+    # stick, then slip: the friction rises to F_s, drops to F_c, then climbs with the speed far
+    # above F_s (the stroke's level); the crossing ends by 90 % of the way to the peak
+    dx = np.linspace(0.0, 1.0, 400)
+    dF = np.where(dx < 0.05, 1.0 - np.exp(-dx / 0.01), 0.8 + 2.0 * (dx - 0.05))
+    dF[dx >= 0.05] = np.maximum(dF[dx >= 0.05], 0.8)
+    m, D = crossing_end(Crossing(dF=dF, dx=dx, D=float(np.median(dF[133:266]))), _th())
+    assert D == pytest.approx(1.0, abs=0.05)  # the peak of the friction averaged over 11 samples
+    assert dF[m] > 0.9 * D and dx[m] < 0.05
+
+
+def test_noise_about_a_flat_top_ends_no_crossing_early():
+    rng = np.random.default_rng(0)
+    dx = np.linspace(0.0, 1.0, 2000)
+    dF = 1.0 - np.exp(-dx / 0.05) + rng.normal(0, 0.01, len(dx))
+    m, D = crossing_end(Crossing(dF=dF, dx=dx, D=1.0), _th())
+    assert D == 1.0  # the swing to the stroke's level: no peak taken from the noise
+    assert dF[m] > 0.9 and dx[m] == pytest.approx(0.05 * np.log(10), abs=0.02)
