@@ -25,8 +25,8 @@ from .data import Recording
 from .errors import IdentificationError
 from .markov import NAMES, Levels, distinct_speeds, fit_side_honest
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .segment import (GROSS_SLIDING, Prepared, constant_velocity_levels, crossing_range, crossings, force_branches,
-                      motion_branches, noise_sd, prepare, sliding_levels)
+from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, Prepared, constant_velocity_levels, crossing_range, crossings,
+                      force_branches, motion_branches, noise_sd, prepare, sliding_levels)
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
 RESOLVED = 2.0  # position-noise σ (or encoder steps) a displacement must exceed to be told from none
@@ -89,6 +89,14 @@ def sign_hint(prep: Prepared, levels: Levels) -> str:
 MIN_RANGE_BRANCHES = 3  # reversals whose crossings bound the presliding range for ``with_sliding_levels``
 
 
+def has_speed_sweep(levels: Levels) -> bool:
+    """Whether a recording's constant-velocity levels show two distinct speeds in either
+    direction. A sweep in one direction leaves the other's few levels as they are: a load or a
+    temperature moving along the session can break its runs, and its sliding would pool over
+    them."""
+    return any(distinct_speeds(levels.velocity[levels.velocity * s > 0]) >= 2 for s in (1.0, -1.0))
+
+
 def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     """A recording's levels where it holds no speed sweep — in neither direction do its
     constant-velocity levels show two distinct speeds (none, or a sinusoidal stroke's top:
@@ -96,23 +104,21 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     (``segment.sliding_levels``) where that shows more speeds, and what was done, in words
     ("" if nothing). Gross sliding starts past twice the
     presliding range, the median travel over which the friction crossed to sliding after a
-    reversal (``segment.crossing_range``; at least MIN_RANGE_BRANCHES crossings). The paper's
+    reversal, to the sliding friction at the speed reached (``segment.crossing_range`` with a
+    varying speed; at least MIN_RANGE_BRANCHES crossings). The paper's
     Markov estimator takes constant-velocity runs; a recording made without them (a
     crank-driven tribometer, a sinusoidal force) still shows S(v) wherever its velocity changes
     slowly against the friction's lag, and that is used instead of holding one speed's value
     or another machine's S(v)."""
     sides = {1.0: "positive", -1.0: "negative"}
-    few = [s for s in sides if distinct_speeds(levels.velocity[levels.velocity * s > 0]) < 2]
-    if len(few) < 2 or prep.friction is None:
-        # a sweep in one direction: the other's few levels are what its runs give (a load or a
-        # temperature moving along the session can break its runs; the sliding would pool over it)
+    if has_speed_sweep(levels) or prep.friction is None:
         return levels, ""
-    ranges = [r for c in crossings(prep) if math.isfinite(r := crossing_range(c, prep.th))]
+    ranges = [r for c in crossings(prep) if math.isfinite(r := crossing_range(c, prep.th, varying_speed=True))]
     if len(ranges) < MIN_RANGE_BRANCHES:
         return levels, ""
     z_range = float(np.median(ranges))
     extra = sliding_levels(prep, z_range)
-    taken = [s for s in few if distinct_speeds(extra.velocity[extra.velocity * s > 0])
+    taken = [s for s in sides if distinct_speeds(extra.velocity[extra.velocity * s > 0])
              > distinct_speeds(levels.velocity[levels.velocity * s > 0])]
     if not taken:
         return levels, ""
@@ -295,9 +301,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             raise IdentificationError(str(e) if str(e).startswith(r.source) else f"{r.source}: {e}") from None
     for pr in preps:
         notes.extend(f"{pr.source}: {m}" for m in pr.notes + pr.th.notes)
-    per_file = []
+    per_file, swept = [], []
     for pr in preps:
         lv = constant_velocity_levels(pr)
+        swept.append(has_speed_sweep(lv))
         hint = sign_hint(pr, lv)
         notes.append(f"{pr.source}: {len(lv.velocity)} constant-velocity level(s) "
                      f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)"
@@ -335,7 +342,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     datasets = []
     short = []  # (crossing range, resolution) of recordings whose reversals resolve no presliding
     slow = np.min(np.abs(levels.velocity)) if len(levels.velocity) else np.inf
-    for pr in preps:
+    for pr, sweep in zip(preps, swept):
         # presliding ends where gross sliding begins: below the slowest level; without levels
         # only the 97 % of D cut (F_s from the starting file) bounds the branches
         v_max = max(pr.th.v_floor, 0.3 * slow) if np.isfinite(slow) else np.inf
@@ -345,19 +352,26 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             # resolution: one encoder step, or one σ of a Gaussian sensor
             ds.x_noise = getattr(pr.position_noise, "step", None) or noise_sd(pr.position_noise)
             datasets.append(ds)
-        mb = motion_branches(pr)
+        # without a sweep the strokes' speed varies (a crank): a crossing ends at the sliding
+        # friction of the speed it has reached, not at the stroke's level
+        mb = motion_branches(pr, varying_speed=not sweep)
         if mb:
             ds = PreslidingData(mb, Gaussian(pr.th.f_noise), name=f"{pr.source} (motion-driven)")
             ds.x_noise = getattr(pr.position_noise, "step", None) or max(pr.th.x_noise, 1e-300)
             datasets.append(ds)
-        seen = [] if fb or mb else [r for c in crossings(pr) if math.isfinite(r := crossing_range(c, pr.th))]
+        seen = [] if fb or mb else [(r, float(c.dx[min(MIN_BRANCH_POINTS, len(c.dx)) - 1])) for c in crossings(pr)
+                                    if math.isfinite(r := crossing_range(c, pr.th, varying_speed=not sweep))]
         if len(seen) >= MIN_RANGE_BRANCHES:
-            # reversals whose crossing to sliding is over within the turn threshold: presliding
-            # the position sensor does not resolve (a contact that sticks, then slips)
-            short.append((float(np.median(seen)), pr.th.x_turn))
+            # reversals whose crossing to sliding is over within the turn threshold, or within the
+            # first samples after the turn: presliding the sensor or the sampling does not resolve
+            # (a contact that sticks, then slips)
+            reach = float(np.median([r for r, _ in seen]))
+            resolution = max(pr.th.x_turn, float(np.median([q for _, q in seen])))
+            short.append((reach, resolution))
             notes.append(f"{pr.source}: no presliding branches: {len(seen)} reversals of the motion, each crossing to "
-                         f"sliding within {short[-1][0]:.3g} (median), under the turn threshold x_turn "
-                         f"{pr.th.x_turn:.3g}")
+                         f"sliding within {reach:.3g} (median), no further than the turn threshold x_turn "
+                         f"({pr.th.x_turn:.3g}) or the travel of its first {MIN_BRANCH_POINTS} samples "
+                         f"({resolution:.3g}, median)")
         elif not fb and not mb:
             notes.append(f"{pr.source}: no presliding branches (no applied-force ramps with reversals in presliding, "
                          f"no reversals of a prescribed motion with measured friction)")
@@ -384,7 +398,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     elif n_br:
         z = check_knots(knots, datasets)
     elif short and knots is None:
-        unresolved = UnresolvedCurve(max(r for r, _ in short), min(q for _, q in short), "the turn threshold x_turn")
+        unresolved = UnresolvedCurve(max(r for r, _ in short), max(q for _, q in short),
+                                     f"the turn threshold x_turn or the travel of {MIN_BRANCH_POINTS} samples")
         notes.append(f"transition curve: {unresolved} (held, not estimated)")
     if n_br:
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
@@ -493,7 +508,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             from .refine import refine_fit
 
             say(0.7, "output-error refinement")
-            res = refine_fit(res, preps)
+            res = refine_fit(res, preps, sigma1_given=base is not None)
         except ImportError:
             res.refinement = {"done": False, "reason": "output-error refinement is not available in this version"}
     else:

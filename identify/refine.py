@@ -235,10 +235,13 @@ def _level_residuals(p, levels):
 REFINED_TOP_MIN = 0.5  # the refined F_d's top must keep at least this fraction of the maximum-likelihood one
 
 
-def refine_fit(res, preps: list[Prepared], *, max_samples: int = 20000, max_nfev: int = 20):
+def refine_fit(res, preps: list[Prepared], *, max_samples: int = 20000, max_nfev: int = 20, sigma1_given: bool = True):
     """Refine ``res`` (a ``fit.FitResult``) in place of its estimates; see the module docstring.
     σ1 is refined too where the data determine it (its σ below half its value); otherwise the
-    refinement is repeated with σ1 held."""
+    refinement is repeated with σ1 held — at the user's value (``sigma1_given``), or else at
+    the refinement's start scaled to the data (``sigma1_start``), not at the paper's robot
+    joint's 1500 N·m·s/rad: on a tribometer in N and m that damping alone put 0.66 N (17 % of
+    F_c) into the sliding friction a crank's strokes simulate."""
     import copy
 
     if not any(pr.friction is not None for pr in preps):
@@ -252,10 +255,26 @@ def refine_fit(res, preps: list[Prepared], *, max_samples: int = 20000, max_nfev
         first.params.uncertainty["sigma1"] < 0.5 * first.params.sigma1
     if s1_ok:
         return first
+    s1 = sigma1_start(res)
+    if not sigma1_given and s1 is not None:
+        res.params = res.params.replace(sigma1=s1)
+        res.held["sigma1"] = (f"not determined by these data: held at {s1:.3g}, a damping force of 0.1 % of F_c at the "
+                              f"slowest level's speed (the paper's value is another machine's; give --params with this "
+                              f"machine's)")
     second = _refine_once(res, preps, max_samples, max_nfev, free_sigma1=False)
     if second.refinement.get("done"):
         second.refinement["what"] += "; σ1 held (not determined by these data)"
     return second
+
+
+def sigma1_start(res) -> float | None:
+    """σ1 at the data's scale: a damping force of 0.1 % of the Coulomb level at the slowest
+    level's speed (None without levels)."""
+    lv = res.levels
+    if lv is None or not len(lv.velocity):
+        return None
+    fc = max(abs(res.params.stribeck.positive.Fc), abs(res.params.stribeck.negative.Fc))
+    return 1e-3 * fc / float(np.min(np.abs(lv.velocity)))
 
 
 def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
@@ -277,11 +296,9 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     # earlier steps: refine it too, from a start scaled to the data (a damping force of 0.1 %
     # of the Coulomb level at the slowest level's speed) unless the user's file is in the
     # data's scale already
-    lv = res.levels
     s1 = None
-    if free_sigma1 and lv is not None and len(lv.velocity):
-        fc = max(abs(res.params.stribeck.positive.Fc), abs(res.params.stribeck.negative.Fc))
-        s1 = min(res.params.sigma1, 1e-3 * fc / float(np.min(np.abs(lv.velocity)))) or 1e-3 * fc / float(np.min(np.abs(lv.velocity)))
+    if free_sigma1 and (scaled := sigma1_start(res)) is not None:
+        s1 = min(res.params.sigma1, scaled) or scaled
     # S(v) is refined where friction is measured along the motion. On force-driven presliding
     # alone F_s enters only through eq. (5)'s saturation D = F_s - F_b, so a presliding shape
     # the Leuven curve cannot follow exactly would be absorbed into the Stribeck peak: there

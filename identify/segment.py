@@ -604,11 +604,13 @@ class Crossing:
     the friction's crossing from the old sliding level F_b towards the new one: from the
     sample leaving the reversal to the next turning point, the friction change ``dF`` and the
     displacement ``dx``, both positive in the new direction; ``D`` = new level − F_b, the
-    level being the median friction over the middle third of the stroke."""
+    level being the median friction over the middle third of the stroke; ``speed``, the
+    velocity in the new direction along it."""
 
     dF: np.ndarray
     dx: np.ndarray
     D: float
+    speed: np.ndarray
 
 
 def crossings(prep: Prepared) -> list[Crossing]:
@@ -645,23 +647,51 @@ def crossings(prep: Prepared) -> list[Crossing]:
             D = direction * (level - Fb)
             if D < 20 * th.f_noise:
                 continue
-            out.append(Crossing(dF=direction * (F[s:nxt] - Fb), dx=direction * (x[s:nxt] - x[s]), D=float(D)))
+            out.append(Crossing(dF=direction * (F[s:nxt] - Fb), dx=direction * (x[s:nxt] - x[s]), D=float(D),
+                                speed=direction * v[s:nxt]))
     return out
 
 
 PEAK_DROP = 0.05  # of the swing D (and at least 3 friction-noise sds): a fall from a crossing's peak that ends it
 
 
-def crossing_end(c: Crossing, th: Thresholds) -> tuple[int, float]:
+def sliding_swing(c: Crossing) -> np.ndarray:
+    """Along a crossing, the swing to the sliding friction at the speed of each sample, as the
+    same stroke shows it after its fastest point (slowing down towards the next reversal, far
+    from the last one): for a stroke whose speed varies (a crank's sinusoid) the friction
+    slides at S(v) + σ2·v of the speed it has, not at a level. nan where the stroke never
+    slides that slowly (or fast) after its fastest point."""
+    top = int(np.argmax(c.speed))
+    sp, f = c.speed[top:], c.dF[top:]
+    order = np.argsort(sp)
+    sp, f = sp[order], f[order]
+    out = np.full(len(c.dF), np.nan)
+    if len(sp) < 2:
+        return out
+    inside = (c.speed >= sp[0]) & (c.speed <= sp[-1])
+    out[inside] = np.interp(c.speed[inside], sp, f)
+    return out
+
+
+def crossing_end(c: Crossing, th: Thresholds, *, varying_speed: bool = False) -> tuple[int, float]:
     """Where a crossing has caught up with sliding, and its swing there: the first sample past
     90 % of the swing D to the stroke's level — or, where the friction falls back from a peak
     first (F_s above the sliding friction reached: a contact that sticks, then slips), past
-    90 % of the swing to that peak. On a stroke whose speed keeps rising (a sinusoidal one with
-    viscous friction) the level lies far beyond the end of presliding, and a crossing run to it
-    is gross sliding. The peak is sought on the friction averaged over the smoothing window, so
-    that noise about a flat top makes none. (0, D) if it never gets there."""
+    90 % of the swing to that peak. The peak is sought on the friction averaged over the
+    smoothing window, so that noise about a flat top makes none. With ``varying_speed`` (a
+    recording with no constant-velocity sweep: a crank's strokes) the swing at each sample is
+    to the sliding friction at its own speed (``sliding_swing``), where the stroke shows it:
+    on a stroke whose speed keeps rising with viscous friction, the level lies far beyond the
+    end of presliding, and a crossing run to it is gross sliding. (0, D) if it never gets
+    there."""
     D = c.D
     past = np.flatnonzero(c.dF > 0.9 * D)
+    if varying_speed:
+        swing = sliding_swing(c)
+        near = np.flatnonzero((swing > 20 * th.f_noise) & (c.dF > 0.9 * swing))
+        if len(near) and (not len(past) or near[0] < past[0]):
+            D = float(swing[near[0]])
+            past = near
     smooth = moving_average(c.dF, max(th.window, 3))
     top = np.maximum.accumulate(smooth)
     fell = np.flatnonzero(top - smooth > max(PEAK_DROP * D, 3.0 * th.f_noise))
@@ -671,22 +701,26 @@ def crossing_end(c: Crossing, th: Thresholds) -> tuple[int, float]:
     return (int(past[0]) if len(past) else 0), D
 
 
-def motion_branches(prep: Prepared, *, min_points: int = 5) -> list[Branch]:
+MIN_BRANCH_POINTS = 5  # a motion-driven branch needs this many samples before its end
+
+
+def motion_branches(prep: Prepared, *, min_points: int = MIN_BRANCH_POINTS, varying_speed: bool = False) -> list[Branch]:
     """Reversals of a prescribed motion with measured friction (``crossings``): each crossing,
     up to its end (``crossing_end``), is one branch with the displacement from the reversal as
     input and the friction change as the measured output. D = the swing to where sliding
-    takes over (eq. (5) at the sliding velocity reached)."""
+    takes over (eq. (5) at the sliding velocity reached). ``varying_speed``: see
+    ``crossing_end``."""
     out = []
     for c in crossings(prep):
-        m, D = crossing_end(c, prep.th)
+        m, D = crossing_end(c, prep.th, varying_speed=varying_speed)
         if m < min_points or c.dx[m - 1] <= prep.th.x_turn:
             continue
         out.append(Branch(force=c.dF[:m], displacement=c.dx[:m], D=D, driven="motion"))
     return out
 
 
-def crossing_range(c: Crossing, th: Thresholds) -> float:
+def crossing_range(c: Crossing, th: Thresholds, *, varying_speed: bool = False) -> float:
     """How far a crossing travels before the friction has caught up with sliding
     (``crossing_end``); nan if it never does."""
-    m, _ = crossing_end(c, th)
+    m, _ = crossing_end(c, th, varying_speed=varying_speed)
     return float(c.dx[m]) if m else math.nan

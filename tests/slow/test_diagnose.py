@@ -428,19 +428,30 @@ def test_a_drift_a_rising_sweep_hides_is_named_once_the_speeds_are_shuffled():
 def test_a_ripple_shorter_than_a_held_transition_curve_is_named_from_the_range_the_recording_shows():
     # tribometer 2022 of the suite: a stiff contact (the generator's presliding over 3·10⁻⁷ m,
     # three encoder steps) whose friction crosses within a few samples of each turn, so `fit`
-    # finds no presliding branches and holds its starting file's transition curve — the paper's,
-    # in rad, a range of 3·10⁻⁴ "m" here. A ripple of 3.2·10⁻⁵ m wavelength was then shorter
-    # than the shortest the diagnosis tried (two presliding ranges, an eighth of the stroke
-    # each) and nothing was named, 26 noise floors left. The range the recording shows after
-    # its turns is used instead, and the ripple is named with the generator's wavelength
+    # finds no presliding branches and holds a transition curve. That was its starting file's —
+    # the paper's, in rad, a range of 3·10⁻⁴ "m" here — and a ripple of 3.2·10⁻⁵ m wavelength
+    # was then shorter than the shortest the diagnosis tried (two presliding ranges, an eighth
+    # of the stroke each): nothing was named, 26 noise floors left. Now either way the range is
+    # this machine's: the fit holds the paper's shape within the travel of the crossings' first
+    # samples (the curve unresolved), or, given a curve over an eighth of the stroke, the
+    # diagnosis takes the range the recording shows after its turns. The ripple is named with
+    # the generator's wavelength
     from leuven_friction.identify.fit import fit_recordings
+    from leuven_friction.model import default_params
     from synth.hidden import SUITE_RATE
 
     df, truth, case = make_case("tribometer", 2022, ("position_ripple",), rate=SUITE_RATE["tribometer"])
     rec = to_recording(df, f"{case.label}.csv")
     fitted = fit_recordings([rec])
-    assert "transition_curve" in fitted.held, fitted.held
+    assert "transition_curve" in fitted.held and fitted.params.transition_curve.z[-1] < 1e-5, fitted.held
     d = diagnose(rec, fitted.params)
+    assert list(d.effects) == ["position_ripple"], d.text()
+    lam = d.steps[2]["params"]["wavelength"]
+    assert abs(lam / case.params["position_ripple"]["wavelength"] - 1) < 0.05, d.text()
+    assert d.steps[2]["rms"] < 0.7 * d.steps[1]["rms"], d.text()  # the gap shrinks by over 30 %
+    # the same fit holding the paper's curve in rad (as it did): the range the recording shows
+    paper = fitted.params.replace(transition_curve=default_params().transition_curve)
+    d = diagnose(rec, paper)
     assert [n for n in d.notes if "not identified: the friction covers 90 %" in n], d.text()
     assert list(d.effects) == ["position_ripple"], d.text()
     lam = d.steps[2]["params"]["wavelength"]
