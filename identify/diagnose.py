@@ -2424,10 +2424,13 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     after = final.pred if named else pred_given_c
     rms_alt = _rms((meas - null.pred)[allm])
     if not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0:
+        fitted_here = rec.source in (params.provenance or {}).get("data", [])
         cmp_.notes.append(f"nothing named, so the model written is the one given, which leaves {rms0:.4g}; the "
                           f"base refitted alone (the alternative) leaves {rms_alt:.4g} — "
-                          f"the base, not a missing effect, is what is off: fit it to this recording "
-                          f"(`leuven-friction fit`) or give --params closer to it")
+                          f"the base, not a missing effect, is what is off: "
+                          + ("the fit of this recording holds or misses what the refit moves (see its held "
+                             "parameters, and the refit's values above)" if fitted_here else
+                             "fit it to this recording (`leuven-friction fit`) or give --params closer to it"))
     for k, m in regimes_m.items():
         m = m & allm
         if m.any():

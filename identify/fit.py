@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.stats import chi2 as chi2_dist
 
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
 from ..model.params import get_value, spec_of
@@ -438,6 +439,12 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     why_curve = ("the branches do not bound F_d" if unbounded else
                  "presliding shorter than the position sensor resolves" if unresolved else "no presliding data")
     if tfit is not None:
+        if tfit.dof > 0 and chi2_dist.sf(tfit.chi2, tfit.dof) < MISFIT_P:
+            # as for S(v): the σ of a curve whose shape misfits its branches are the noise's spread only
+            notes.append(f"transition curve: its shape misfits the branches with Gaussian readings (χ² = {tfit.chi2:.3g} "
+                         f"for {tfit.dof} degrees of freedom, p < {MISFIT_P:g}, χ²/dof = {tfit.chi2 / tfit.dof:.3g}): "
+                         f"its σ say how far the noise moves F_d, not how far the contact's curve is from this "
+                         f"piecewise-linear one")
         bad = [i for i in range(1, len(tfit.F)) if not (tfit.stderr[i] < 0.5 * (tfit.F[i] - tfit.F[i - 1]) + 0.5 * tfit.F[i])]
         if bad:
             notes.append(f"transition curve: F_d at knot(s) {bad} has σ comparable to its value: weakly determined")
@@ -479,8 +486,6 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
 
     unc = {} if inertia_sd is None else {"inertia": inertia_sd}
-    from scipy.stats import chi2 as chi2_dist
-
     for side, dec in decisions.items():
         if dec.fit is not None:
             for k in NAMES:
@@ -549,7 +554,6 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
     no parameter file was given: the built-in default is another machine's. A file's inertia
     is kept (a value from the drawings is usually better than a regression on a log), and the
     notes say what the recording reads. Held and named otherwise."""
-    from scipy.stats import chi2 as chi2_dist
 
     from .diagnose import recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
 

@@ -123,6 +123,8 @@ class TransitionFit:
     notes: list = field(default_factory=list)
     flat: tuple = ()  # knots i whose increment F_i − F_(i−1) ended at its lower bound: the data do not resolve it
     unbounded: tuple = ()  # … at its upper bound: the data do not bound F_d there (not an estimate)
+    chi2: float = 0.0  # Σ r² over the branches with Gaussian noise (quantised readings have no χ²)
+    dof: int = 0  # … their samples less the parameters they share and their own offsets
 
 
 def branch_displacement(z_knots, F_knots, n, D, force):
@@ -252,10 +254,17 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
         cov = np.linalg.pinv(H)
         notes.append("the likelihood is flat in some direction: error bars are lower bounds")
     sd = np.sqrt(np.abs(np.diag(cov)))
+    # goodness of fit where it has a χ² (Gaussian readings): a curve whose shape misfits its
+    # branches has σ that say the noise's spread only (the caller says so)
+    gauss = [(br, ds) for ds in datasets if isinstance(ds.noise, Gaussian) for br in ds.branches]
+    index = {id(br): i for i, br in enumerate(branches)}
+    chi2 = sum(float(np.sum(ds.noise.residuals(*branch_prediction(br, z_knots, F, nn, off[index[id(br)]])) ** 2))
+               for br, ds in gauss)
+    dof = max(sum(len(br.force) for br, _ in gauss) - (ns if gauss else 0) - len(gauss), 0)
     return TransitionFit(
         z=z_knots, F=F, stderr=np.concatenate([[0.0], sd[:nk]]), covariance=cov[:nk, :nk], n=nn,
         n_stderr=float(sd[nk]) if fit_n else None, nll=float(best.fun), offsets=list(map(float, off)), notes=notes,
-        flat=flat, unbounded=unbounded,
+        flat=flat, unbounded=unbounded, chi2=chi2, dof=dof,
     )
 
 

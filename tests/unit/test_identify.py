@@ -66,6 +66,23 @@ def test_ml_recovers_transition_curve_within_uncertainty(rng):
     assert np.all(np.abs(fit.F[1:] - F_TRUE[1:]) < 3.5 * fit.stderr[1:]), (fit.F, fit.stderr)
 
 
+def test_ml_chi2_reads_the_noise_for_the_right_shape_and_flags_a_wrong_one():
+    # Gaussian readings of the true curve: χ² is the noise's (χ²/dof ≈ 1 within its spread,
+    # √(2/dof)); the same readings through a single straight segment (a shape the contact's
+    # curve is not) leave χ² far in the tail
+    from scipy.stats import chi2 as chi2_dist
+
+    rng = np.random.default_rng(5)
+    data = [_branches(rng, Gaussian(5e-7))]
+    right = fit_transition_curve(data, Z)
+    assert right.dof == 3 * 300 - 4 - 3
+    assert abs(right.chi2 / right.dof - 1) < 4 * np.sqrt(2 / right.dof)
+    wrong = fit_transition_curve(data, np.array([0.0, Z[-1]]))
+    assert chi2_dist.sf(wrong.chi2, wrong.dof) < 1e-3 and wrong.chi2 / wrong.dof > 10
+    # quantised readings have no χ²: nothing counted
+    assert fit_transition_curve([_branches(rng, Quantized(1.6e-5, 4e-6))], Z).dof == 0
+
+
 def test_ml_with_two_noise_models_beats_unweighted_least_squares():
     rng = np.random.default_rng(99)
     ml, ls = [], []
