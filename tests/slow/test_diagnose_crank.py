@@ -4,22 +4,16 @@ a sinusoidal prescribed motion with no constant-velocity run, Dahl's presliding 
 friction, position in µm, 80,000 samples): the fit takes S(v) from the steady sliding, and the
 diagnosis names what was imposed and nothing on the control."""
 
-import json
-
 import pytest
 
-from leuven_friction.app.cli import main
 from synth import crank
 from synth.crank import crank_recording
+from tests.cli_runs import diagnose_file
 
 
 def _diagnose(tmp_path, effect, seed=1):
     df, truth = crank_recording(seed, effect)
-    path = tmp_path / f"crank_{effect}.csv"
-    df.to_csv(path, index=False, float_format="%.9g")
-    out = tmp_path / "report.json"
-    assert main(["diagnose", str(path), "--json", str(out)]) == 0
-    return json.loads(out.read_text()), truth
+    return diagnose_file(tmp_path, df, f"crank_{effect}.csv", "%.9g"), truth
 
 
 @pytest.mark.slow

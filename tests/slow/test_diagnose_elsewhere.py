@@ -5,21 +5,15 @@ rate-dependent sliding law, a robot joint under a PID at 500 Hz with an 18-bit e
 step is as long as the contact's presliding, 74,000 samples; effects in the issue's shapes,
 imposed inside its loop). The whole set is a benchmark (``python -m bench.elsewhere``)."""
 
-import json
-
 import pytest
 
-from leuven_friction.app.cli import main
 from synth.elsewhere import make
+from tests.cli_runs import diagnose_file
 
 
 def _diagnose(tmp_path, effect, seed=1):
     df, truth = make("robot_joint", seed, effect)
-    path = tmp_path / f"joint_{effect}.csv"
-    df.to_csv(path, index=False, float_format="%.10g")
-    out = tmp_path / "report.json"
-    assert main(["diagnose", str(path), "--json", str(out)]) == 0
-    return json.loads(out.read_text()), truth
+    return diagnose_file(tmp_path, df, f"joint_{effect}.csv"), truth
 
 
 @pytest.mark.slow
@@ -54,10 +48,6 @@ def test_a_friction_effect_whose_contact_keeps_its_stiffness_names_no_softening_
     # cyclic_softening here (gaps 0.115 → 0.055 mN, 0.066 → 0.056). A softening is judged beside
     # a presliding range following the friction effect (presliding_range), and is not named
     df, truth = make("tribometer", seed, effect)
-    path = tmp_path / f"tribometer_{effect}.csv"
-    df.to_csv(path, index=False, float_format="%.10g")
-    out = tmp_path / "report.json"
-    assert main(["diagnose", str(path), "--json", str(out)]) == 0
-    rep = json.loads(out.read_text())
+    rep = diagnose_file(tmp_path, df, f"tribometer_{effect}.csv")
     assert rep["effects"] == [effect], rep["effects"]
     assert rep["steps"][2]["rms"] < 0.7 * rep["steps"][1]["rms"]

@@ -1,0 +1,15 @@
+"""Running the command line as a user does, on a recording written to a real file."""
+
+import json
+
+from leuven_friction.app.cli import main
+
+
+def diagnose_file(tmp_path, df, name: str, float_format: str = "%.10g") -> dict:
+    """``df`` written to ``tmp_path/name``, ``leuven-friction diagnose`` run on it (a fit
+    first: no parameter file), its JSON report read back."""
+    path = tmp_path / name
+    df.to_csv(path, index=False, float_format=float_format)
+    out = tmp_path / "report.json"
+    assert main(["diagnose", str(path), "--json", str(out)]) == 0
+    return json.loads(out.read_text())
