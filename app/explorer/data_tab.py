@@ -1,7 +1,7 @@
 """The Data tab: the user's recording first, then a fit offered as a proposal.
 
 An upload is read and plotted at once (signals against time, friction against velocity
-with the constant-velocity levels found, friction against displacement from each reversal).
+with the levels of S(v) found, friction against displacement from each reversal).
 The page lists the columns, units and sign it recognised; a dropdown per signal changes
 the mapping. The fit then runs on whatever the data support, in this tab's job thread, and
 comes back as a proposal that says what it estimated, what it held and why.
@@ -295,8 +295,9 @@ class DataTab:
             msg = web_message(e, name)
             self.gui_status.content = f"⚠ {msg}"
             self.gui_report.content = (f"**Nothing was fitted.** {msg}\n\nThe data are plotted above: look for "
-                                       "constant-velocity runs in both directions (for S(v)) and slow force ramps "
-                                       "with reversals (for the transition curve).")
+                                       "constant-velocity runs or steady sliding at several speeds in both directions "
+                                       "(for S(v)) and slow force ramps or reversals of the motion (for the "
+                                       "transition curve).")
             ctx.notify("Fit: nothing to estimate", msg, "yellow", 10.0)
             return
         self._busy(False)
