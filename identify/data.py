@@ -204,12 +204,14 @@ def _read_table(path: Path, text: str) -> pd.DataFrame:
 
 
 def load_recording(source, *, columns: dict | None = None, units: dict | None = None,
-                   require: tuple = ("time",), name: str | None = None) -> Recording:
+                   require: tuple = ("time",), name: str | None = None, only: tuple | None = None) -> Recording:
     """Read a recording from a path, or from bytes/str content (``name`` labels messages).
 
     ``columns`` maps signals to column names, or to None for a signal to take from no column
     (a recognised name is then left alone); ``units`` maps signals to unit names and
     overrides what the header says. Columns not recognised are ignored (listed in ``notes``).
+    ``only``: the signals the caller uses (with ``require``); a column recognised as another
+    one is not read, so a gap in a column the command does not use is no error.
     """
     refused = {sig for sig, col in (columns or {}).items() if col is None}
     columns = {sig: col for sig, col in (columns or {}).items() if col is not None}
@@ -293,6 +295,9 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
 
     rec = Recording(time=np.empty(0), source=str(path))
     for sig, col in mapping.items():
+        if only is not None and sig not in only and sig not in require:
+            notes.append(f"{col}: taken as {sig}, not used here: not read")
+            continue
         raw = df[col]
         values = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=np.float64)
         bad = np.flatnonzero(~np.isfinite(values))

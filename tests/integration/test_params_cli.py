@@ -104,6 +104,27 @@ def test_cli_simulate_input_uses_recorded_position(tmp_path, capsys):
     assert F[-1] == pytest.approx(_steady_friction("negative", -v), abs=1e-3)
 
 
+def test_cli_simulate_reads_only_the_columns_its_drive_uses(tmp_path, capsys):
+    # a logged friction with a gap does not stop a simulation driven by the position; a gap in
+    # the position does, in one line naming the column and the row
+    t = np.arange(0, 1, 1e-3)
+    friction = np.ones(len(t))
+    friction[100] = np.nan
+    rec = tmp_path / "rec.csv"
+    pd.DataFrame({"time [s]": t, "position [rad]": 0.02 * t, "friction [N*m]": friction}).to_csv(rec, index=False)
+    out = tmp_path / "pred.csv"
+    rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "displacement", "--out", out)
+    assert rc == 0, err
+    assert len(pd.read_csv(out)) == len(t)
+    position = 0.02 * t
+    position[7] = np.nan
+    pd.DataFrame({"time [s]": t, "position [rad]": position}).to_csv(rec, index=False)
+    out.unlink()
+    rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "displacement", "--out", out)
+    assert rc != 0 and "'position [rad]' row 9" in err and len(err.strip().splitlines()) == 1, err
+    assert not out.exists()
+
+
 def test_cli_simulate_smooth_path_takes_encoder_steps_for_measurement(tmp_path, capsys):
     # the same motion logged by an encoder of 5 µrad steps: along the logged steps the model's
     # presliding state jumps at every step (the velocity is zero, then one step per sample);
