@@ -11,7 +11,10 @@ user can override by name (``fit --threshold v_floor=1e-4``).
 * :func:`constant_velocity_levels` → ``markov.Levels``;
 * :func:`force_branches` — presliding from applied-force ramps between turning points;
 * :func:`motion_branches` — presliding from a reversed prescribed motion with measured friction:
-  each crossing from one sliding level to the other is a sample of the transition curve.
+  each crossing from one sliding level to the other (:func:`crossings`, ended by
+  :func:`crossing_end`) is a sample of the transition curve;
+* :func:`sliding_levels` — levels of S(v) from steady gross sliding binned by speed
+  (:func:`speed_levels`, shared with the diagnosis), for a recording with no speed sweep.
 """
 
 from __future__ import annotations
