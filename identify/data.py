@@ -296,6 +296,11 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     rec = Recording(time=np.empty(0), source=str(path))
     for sig, col in mapping.items():
         if only is not None and sig not in only and sig not in require:
+            # its values are not read (a gap there is no error), its unit is still the file's
+            unit = (units or {}).get(sig) or headers[col][1]
+            known = unit_of(unit, sig) if unit is not None and sig != "temperature" else None
+            if known is not None and known[1] in SI_OF[sig]:
+                rec.units[sig] = known[1]
             notes.append(f"{col}: taken as {sig}, not used here: not read")
             continue
         raw = df[col]

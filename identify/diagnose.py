@@ -1153,6 +1153,7 @@ REFIT_BASE_U = 8  # refit_transition's vector: log g, log κ0, log n, log σ1, t
 CURVE_FACTOR_MAX = 20.0  # each segment of a piecewise-linear F_d refitted within this factor of the file's
 CURVE_GROUPS_MAX = 8  # … in at most this many groups of neighbouring segments (each one simulation per Jacobian)
 CURVE_MIN_GAIN = 0.1  # … and only if the model alone then leaves this much less RMS gap
+BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
 REFIT_NFEV_FROM = 20  # least-squares steps of a refit that starts from another's solution (each step simulates)
 
 
@@ -1707,6 +1708,8 @@ class Diagnosis:
     def summary(self) -> dict:
         return {
             "effects": list(self.effects), "effect": self.effect, "effect_params": self.effect_params,
+            # the units every number here is in: the parameter set's (the recording is read into SI)
+            "units": dict(self.params_before.units),
             "space": self.space, "noise": self.noise, "rms_before": self.rms_before, "rms_after": self.rms_after,
             "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
             "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
@@ -2423,7 +2426,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # alone is a step of the report, not the file: the diagnosis adds effects, `fit` makes bases)
     after = final.pred if named else pred_given_c
     rms_alt = _rms((meas - null.pred)[allm])
-    if not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0:
+    if not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0 and rms0 > BASE_OFF_NOISE * cmp_.noise:
+        # (a model within two noise floors is at the noise level, whatever a refit gains there)
         fitted_here = rec.source in (params.provenance or {}).get("data", [])
         cmp_.notes.append(f"nothing named, so the model written is the one given, which leaves {rms0:.4g}; the "
                           f"base refitted alone (the alternative) leaves {rms_alt:.4g} — "

@@ -127,8 +127,12 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     new = np.isin(np.sign(extra.velocity), taken)
     arrays = (np.concatenate([getattr(levels, k)[~mine], getattr(extra, k)[new]])
               for k in ("velocity", "friction", "variance", "count"))
-    words = " and ".join(f"{sides[s]} velocity ({distinct_speeds(levels.velocity[levels.velocity * s > 0])} distinct "
-                         f"speed(s) held constant)" for s in taken)
+    def held_at(s):
+        mine_s = levels.velocity * s > 0
+        return (f"{sides[s]} velocity (its {int(mine_s.sum())} constant-velocity level(s) at "
+                f"{distinct_speeds(levels.velocity[mine_s])} distinct speed(s))")
+
+    words = " and ".join(held_at(s) for s in taken)
     return (Levels(*arrays, opposing=levels.opposing, creep=levels.creep),
             f"{words}: S(v) from {int(new.sum())} speed level(s) of steady gross sliding instead (past "
             f"{GROSS_SLIDING:g} × {z_range:.3g} of travel after each reversal, the median range over which the "
@@ -643,6 +647,9 @@ def fit_report(res: FitResult) -> str:
             err = f" ± {unc.get(f'transition_curve.F.{i}', float('nan')):.2g}" if i else "   (fixed)"
             lines.append(f"    {z:>12.4g} {F:>12.5g}{err}")
         lines.append(f"    n = {res.params.n:g}" + (f" ± {unc['n']:.2g}" if "n" in unc else " (held)"))
+    if "sigma1" in unc:
+        lines.append("[[Micro-viscous damping σ1, eq. (3) — from the output-error refinement]]")
+        lines.append(f"    σ1 = {res.params.sigma1:.4g} ± {unc['sigma1']:.2g} {spec_of(res.params, 'sigma1').unit}")
     if "inertia" in unc:
         lines.append("[[Inertia, eq. (8) — from the applied force]]")
         lines.append(f"    I = {res.params.inertia:.4g} ± {unc['inertia']:.2g} {spec_of(res.params, 'inertia').unit}")

@@ -20,6 +20,7 @@ def _diagnose(tmp_path, effect, seed=1):
 def test_a_crank_control_names_nothing_and_its_fit_leaves_the_noise(tmp_path):
     rep, _ = _diagnose(tmp_path, None)
     assert rep["effects"] == []
+    assert rep["units"] == {"position": "m", "force": "N", "time": "s"}  # the µm file read into SI, said so
     # the base as fitted (no parameter file) within a few noise floors: before S(v) came from
     # the sliding and σ1 from the data's scale, 0.67 N against a floor of 0.028
     assert rep["steps"][0]["rms"] < 3 * rep["noise"], (rep["steps"][0], rep["noise"])

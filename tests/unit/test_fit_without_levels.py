@@ -13,6 +13,8 @@ parameters far from the paper's and the friction measured directly:
 The Markov estimator's levels come from steady gross sliding binned by speed
 (``segment.sliding_levels``)."""
 
+import copy
+
 import numpy as np
 import pytest
 
@@ -177,3 +179,24 @@ def test_a_diagnosis_of_its_own_fit_says_the_fit_is_what_misses_not_to_fit_again
     assert d.effects == []
     off = [n for n in d.notes if "is what is off" in n]
     assert off and "the fit of this recording" in off[0] and "leuven-friction fit" not in off[0], d.text()
+
+
+def test_a_fit_at_the_noise_floor_is_not_said_to_be_off():
+    # a short crank log at 200 Hz, clean: its fit leaves a gap within the noise floor; that a
+    # refit of the level and stiffness leaves less there is noise, not a base that is off
+    from leuven_friction.identify.diagnose import diagnose
+
+    df, _ = crank_recording(1, duration=8.0, rate=200.0)
+    rec = load_recording(df.to_csv(index=False).encode(), name="short_crank.csv")
+    d = diagnose(rec, fit_recordings([rec]).params)
+    assert d.effects == [] and d.steps[0]["rms"] < 2 * d.noise, d.text()
+    assert not [n for n in d.notes if "is what is off" in n], d.text()
+
+
+def test_an_estimated_sigma1_is_printed_with_its_sd(crank_fit):
+    from leuven_friction.identify.fit import fit_report
+
+    _, res = crank_fit
+    shown = copy.copy(res)
+    shown.params = res.params.replace(uncertainty={**res.params.uncertainty, "sigma1": 0.25 * res.params.sigma1})
+    assert f"σ1 = {res.params.sigma1:.4g} ± {0.25 * res.params.sigma1:.2g} N·s/m" in fit_report(shown)
