@@ -1153,6 +1153,7 @@ REFIT_BASE_U = 8  # refit_transition's vector: log g, log κ0, log n, log σ1, t
 CURVE_FACTOR_MAX = 20.0  # each segment of a piecewise-linear F_d refitted within this factor of the file's
 CURVE_GROUPS_MAX = 8  # … in at most this many groups of neighbouring segments (each one simulation per Jacobian)
 CURVE_MIN_GAIN = 0.1  # … and only if the model alone then leaves this much less RMS gap
+SIGMA1_REFIT_MAX = 100.0  # σ1 refits within this factor of the file's
 BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
 REFIT_NFEV_FROM = 20  # least-squares steps of a refit that starts from another's solution (each step simulates)
 
@@ -1239,9 +1240,9 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)
     c = math.log(CURVE_FACTOR_MAX)
-    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(1.0 / n0), -math.log(100)], np.full(NS, -b),
+    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(1.0 / n0), -math.log(SIGMA1_REFIT_MAX)], np.full(NS, -b),
                          np.full(NC, -c), [f[2] for t in terms for f in t.free]])
-    hi = np.concatenate([[math.log(5), math.log(20), math.log(40.0 / n0), math.log(100)], np.full(NS, b),
+    hi = np.concatenate([[math.log(5), math.log(20), math.log(40.0 / n0), math.log(SIGMA1_REFIT_MAX)], np.full(NS, b),
                          np.full(NC, c), [f[3] for t in terms for f in t.free]])
     u0 = np.concatenate([np.zeros(nb), prior_u]) if start is None else np.asarray(start, float)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
@@ -2407,8 +2408,14 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     if params.model == "leuven":
         levels = [getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
                   for sd in ("positive", "negative") for k in ("Fs", "Fc")]
+        # σ1 refits within a factor SIGMA1_REFIT_MAX of the file's (``refit_transition``): at that bound the
+        # record wants it further, and the value written is a bound, not an estimate
+        s1_ratio = final_base.sigma1 / max(params.sigma1, 1e-300)
+        s1_bound = (" (at its bound, a factor 100 from the file's: the record pushes it further)"
+                    if abs(abs(math.log(max(s1_ratio, 1e-300))) - math.log(SIGMA1_REFIT_MAX)) < 0.01 else "")
         cmp_.notes.append(f"the model written (every step) refits, besides the level, the stiffness and the effects: "
-                          f"n {params.n:.3g} → {final_base.n:.3g}, σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, "
+                          f"n {params.n:.3g} → {final_base.n:.3g}, σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}"
+                          f"{s1_bound}, "
                           f"the S(v) levels ×{min(levels):.3f} … ×{max(levels):.3f}"
                           + (", the transition curve's segments" if refit_curve else "")
                           + ("" if named else " (nothing named: the parameter file is left as it was)"))
