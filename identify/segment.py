@@ -287,8 +287,9 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
             # a load that varies through the session (a schedule, a drifting contact): keeping
             # only its plateau would leave too little to fit; the base model then averages over
             # the loads, and `diagnose` tells whether the friction follows them
-            notes.append(f"normal load: only {100 * usable.mean():.0f} % of the samples within {th.load_tol:.3g} N of "
-                         f"its plateau {N0:.4g} N: every sample is used, S(v) and the transition curve average over "
+            notes.append(f"normal load: no plateau (only {100 * usable.mean():.0f} % of the samples within "
+                         f"{th.load_tol:.3g} N of its 95th percentile {N0:.4g} N; it ranges {np.min(N):.4g}–"
+                         f"{np.max(N):.4g} N): every sample is used, S(v) and the transition curve average over "
                          f"the loads (run diagnose to see whether friction follows the load)")
             usable = np.ones(n, dtype=bool)
     flipped = False
