@@ -103,14 +103,13 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     constant-velocity levels show two distinct speeds (none, or a sinusoidal stroke's top:
     S(v) + σ2·v at one speed) — each direction taken instead from its steady gross sliding
     (``segment.sliding_levels``) where that shows more speeds, and what was done, in words
-    ("" if nothing). Gross sliding starts past twice the
-    presliding range, the median travel over which the friction crossed to sliding after a
-    reversal, to the sliding friction at the speed reached (``segment.crossing_range`` with a
-    varying speed; at least MIN_RANGE_BRANCHES crossings). The paper's
-    Markov estimator takes constant-velocity runs; a recording made without them (a
-    crank-driven tribometer, a sinusoidal force) still shows S(v) wherever its velocity changes
-    slowly against the friction's lag, and that is used instead of holding one speed's value
-    or another machine's S(v)."""
+    ("" if nothing). Gross sliding starts past twice the presliding range, the median travel
+    over which the friction crossed to sliding after a reversal, to the sliding friction at the
+    speed reached (``segment.crossing_range`` with a varying speed; at least
+    MIN_RANGE_BRANCHES crossings). The paper's Markov estimator takes constant-velocity runs; a
+    recording made without them (a crank-driven tribometer, a sinusoidal force) still shows
+    S(v) wherever its velocity changes slowly against the friction's lag, and that is used
+    instead of holding one speed's value or another machine's S(v)."""
     sides = {1.0: "positive", -1.0: "negative"}
     if has_speed_sweep(levels) or prep.friction is None:
         return levels, ""
@@ -127,6 +126,7 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     new = np.isin(np.sign(extra.velocity), taken)
     arrays = (np.concatenate([getattr(levels, k)[~mine], getattr(extra, k)[new]])
               for k in ("velocity", "friction", "variance", "count"))
+
     def held_at(s):
         mine_s = levels.velocity * s > 0
         return (f"{sides[s]} velocity (its {int(mine_s.sum())} constant-velocity level(s) at "
