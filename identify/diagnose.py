@@ -2411,7 +2411,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # σ1 refits within a factor SIGMA1_REFIT_MAX of the file's (``refit_transition``): at that bound the
         # record wants it further, and the value written is a bound, not an estimate
         s1_ratio = final_base.sigma1 / max(params.sigma1, 1e-300)
-        s1_bound = (" (at its bound, a factor 100 from the file's: the record pushes it further)"
+        s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's: the record pushes it further)"
                     if abs(abs(math.log(max(s1_ratio, 1e-300))) - math.log(SIGMA1_REFIT_MAX)) < 0.01 else "")
         cmp_.notes.append(f"the model written (every step) refits, besides the level, the stiffness and the effects: "
                           f"n {params.n:.3g} → {final_base.n:.3g}, σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}"

@@ -256,11 +256,15 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
     sd = np.sqrt(np.abs(np.diag(cov)))
     # goodness of fit where it has a χ² (Gaussian readings): a curve whose shape misfits its
     # branches has σ that say the noise's spread only (the caller says so)
-    gauss = [(br, ds) for ds in datasets if isinstance(ds.noise, Gaussian) for br in ds.branches]
-    index = {id(br): i for i, br in enumerate(branches)}
-    chi2 = sum(float(np.sum(ds.noise.residuals(*branch_prediction(br, z_knots, F, nn, off[index[id(br)]])) ** 2))
-               for br, ds in gauss)
-    dof = max(sum(len(br.force) for br, _ in gauss) - (ns if gauss else 0) - len(gauss), 0)
+    chi2, samples, gauss, i = 0.0, 0, 0, 0
+    for ds in datasets:
+        for br in ds.branches:
+            if isinstance(ds.noise, Gaussian):
+                chi2 += float(np.sum(ds.noise.residuals(*branch_prediction(br, z_knots, F, nn, off[i])) ** 2))
+                samples += len(br.force)
+                gauss += 1
+            i += 1
+    dof = max(samples - (ns if gauss else 0) - gauss, 0)
     return TransitionFit(
         z=z_knots, F=F, stderr=np.concatenate([[0.0], sd[:nk]]), covariance=cov[:nk, :nk], n=nn,
         n_stderr=float(sd[nk]) if fit_n else None, nll=float(best.fun), offsets=list(map(float, off)), notes=notes,
