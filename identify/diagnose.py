@@ -66,6 +66,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -74,7 +75,7 @@ from scipy.signal import savgol_filter
 from scipy.stats import rankdata
 from numba import njit
 
-from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, simulate_displacement
+from ..model import FrictionParams, SteadyAlong, Stribeck, StribeckSide, TransitionCurve, simulate_displacement, steady_along
 from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
@@ -861,42 +862,44 @@ class FreeSteadyCurve:
         self.k = k
         self.rest = rest
         self._cache = {}
+        self._masks = {}
         self.i0, self.i1, self.w0, self.w1 = i0, i1, w0, w1
 
-    def _on(self, mask: np.ndarray) -> tuple:
-        """The hat functions on ``mask`` and their normal matrix, kept for the masks in use (a
-        least-squares fit evaluates the same mask many times)."""
-        hit = self._cache.get(id(mask))
-        if hit is not None and hit[0] is mask:
+    def _on(self, idx: np.ndarray) -> "CurveSamples":
+        """The curve's parts at the samples ``idx``, kept for the index arrays in use (a
+        least-squares fit evaluates the same samples many times)."""
+        hit = self._cache.get(id(idx))
+        if hit is not None and hit[0] is idx:
             return hit[1]
-        i0, i1, w0, w1 = self.i0[mask], self.i1[mask], self.w0[mask], self.w1[mask]
+        i0, i1, w0, w1 = self.i0[idx], self.i1[idx], self.w0[idx], self.w1[idx]
         k = self.k
         G = (np.bincount(i0 * k + i0, w0 * w0, k * k) + np.bincount(i1 * k + i1, w1 * w1, k * k)
              + np.bincount(i0 * k + i1, w0 * w1, k * k) + np.bincount(i1 * k + i0, w1 * w0, k * k)).reshape(k, k)
+        fixed = [a[idx] for a in (self.memory_offset, self.acceleration) if a is not None]
         if len(self._cache) >= 16:
             self._cache.clear()
-        self._cache[id(mask)] = (mask, (i0, i1, w0, w1, G))
-        return i0, i1, w0, w1, G
+        at = CurveSamples(i0, i1, w0, w1, G, self.rest[idx], fixed)
+        self._cache[id(idx)] = (idx, at)
+        return at
 
-    def solve(self, r: np.ndarray, mask: np.ndarray, extra=()) -> tuple[np.ndarray, np.ndarray]:
-        """Least-squares coefficients of the hat functions and of the ``extra`` columns (full
-        length arrays) fitted to ``r`` on ``mask`` (a coefficient the mask gives no sample of
-        stays 0), and the inverse normal matrix (the coefficients' covariance per unit
-        residual variance)."""
-        i0, i1, w0, w1, Ghats = self._on(mask)
-        rm = r[mask]
+    def solve(self, r: np.ndarray, idx: np.ndarray, extra=()) -> tuple[np.ndarray, np.ndarray]:
+        """Least-squares coefficients of the hat functions and of the ``extra`` columns fitted
+        to ``r`` at the samples ``idx`` (``r`` and the columns given at those samples only; a
+        coefficient they give no sample of stays 0), and the inverse normal matrix (the
+        coefficients' covariance per unit residual variance)."""
+        at = self._on(idx)
+        i0, i1, w0, w1 = at.i0, at.i1, at.w0, at.w1
         k = self.k
         K = k + len(extra)
         b = np.zeros(K)
-        b[:k] = np.bincount(i0, w0 * rm, k) + np.bincount(i1, w1 * rm, k)
+        b[:k] = np.bincount(i0, w0 * r, k) + np.bincount(i1, w1 * r, k)
         G = np.zeros((K, K))
-        G[:k, :k] = Ghats
-        for j, col in enumerate(extra):
-            em = col[mask]
-            b[k + j] = em @ rm
+        G[:k, :k] = at.G
+        for j, em in enumerate(extra):
+            b[k + j] = em @ r
             G[k + j, :k] = G[:k, k + j] = np.bincount(i0, w0 * em, k) + np.bincount(i1, w1 * em, k)
             for jj in range(j + 1):
-                G[k + j, k + jj] = G[k + jj, k + j] = em @ extra[jj][mask]
+                G[k + j, k + jj] = G[k + jj, k + j] = em @ extra[jj]
         d = np.diag(G).copy()
         G[np.diag_indices(K)] += 1e-9 * (d.max() if d.size else 1.0) + (d == 0)
         Ginv = np.linalg.inv(G)
@@ -910,30 +913,64 @@ class FreeSteadyCurve:
         np.add.at(hats, (rows, self.i1), self.w1)
         return hats
 
-    def evaluate(self, c: np.ndarray, extra: list, idx=slice(None)) -> np.ndarray:
-        """The correction with coefficients ``c`` (hats, then ``extra`` columns) at ``idx``."""
-        out = c[self.i0[idx]] * self.w0[idx] + c[self.i1[idx]] * self.w1[idx]
+    def evaluate(self, c: np.ndarray, extra: list, at: "CurveSamples | None" = None) -> np.ndarray:
+        """The correction with coefficients ``c`` (hats, then ``extra`` columns) over every
+        sample, or at the samples of ``at`` (the columns then given there)."""
+        if at is None:
+            out = c[self.i0] * self.w0 + c[self.i1] * self.w1
+        else:
+            out = c[at.i0] * at.w0 + c[at.i1] * at.w1
         for j, col in enumerate(extra):
-            out = out + c[self.k + j] * col[idx]
+            out = out + c[self.k + j] * col
         return out
 
     def fit(self, r: np.ndarray, mask: np.ndarray, model: np.ndarray | None = None) -> np.ndarray:
         """The correction over every sample fitted to ``r`` on ``mask``. With ``model`` (the
         model's friction), one more column: a level of its own for the friction at rest, the
         transition curve's, which need not share S(v)'s level g."""
+        idx = self._indices(mask)
         extra = self._extra(model)
-        return self.evaluate(self.solve(r, mask, extra)[0], extra)
+        c = self.solve(r[idx], idx, [col[idx] for col in extra])[0]
+        return self.evaluate(c, extra)
+
+    def _indices(self, mask: np.ndarray) -> np.ndarray:
+        """The samples of ``mask``, one index array per mask in use (``_on`` keeps the curve's
+        parts by that array)."""
+        hit = self._masks.get(id(mask))
+        if hit is None or hit[0] is not mask:
+            if len(self._masks) >= 16:
+                self._masks.clear()
+            self._masks[id(mask)] = hit = (mask, np.flatnonzero(mask))
+        return hit[1]
 
     def _extra(self, model) -> list:
+        """The columns beside the hats over every sample: the level at rest (with ``model``),
+        the memory's constant, the mean acceleration."""
         extra = [] if model is None else [np.where(self.rest, model, 0.0)]
-        extra += [] if self.memory_offset is None else [self.memory_offset]
-        return extra + ([] if self.acceleration is None else [self.acceleration])
+        return extra + [a for a in (self.memory_offset, self.acceleration) if a is not None]
 
-    def residual_at(self, r: np.ndarray, idx: np.ndarray, mask: np.ndarray, model: np.ndarray) -> np.ndarray:
-        """``r`` minus the correction fitted to it on ``mask`` (with the level at rest),
-        evaluated at the samples ``idx`` only (what a least-squares step works on)."""
-        extra = self._extra(model)
-        return r[idx] - self.evaluate(self.solve(r, mask, extra)[0], extra, idx)
+    def residual_at(self, measured: np.ndarray, model: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        """``measured − model`` minus the correction fitted to it (with the level at rest) at
+        the samples ``idx``, evaluated there: what a least-squares step works on, computed at
+        those samples only."""
+        r = measured[idx] - model[idx]
+        at = self._on(idx)
+        extra = [np.where(at.rest, model[idx], 0.0)] + at.fixed
+        return r - self.evaluate(self.solve(r, idx, extra)[0], extra, at)
+
+
+class CurveSamples(NamedTuple):
+    """``FreeSteadyCurve``'s parts at a set of samples: each sample's two hat functions (indices
+    and weights), their normal matrix, which samples are at rest, and the fixed columns there
+    (the memory's constant, the mean acceleration, where the curve has them)."""
+
+    i0: np.ndarray
+    i1: np.ndarray
+    w0: np.ndarray
+    w1: np.ndarray
+    G: np.ndarray
+    rest: np.ndarray
+    fixed: list
 
 
 @dataclass(frozen=True)
@@ -976,10 +1013,10 @@ class Engine:
         self.c = cmp_
         self.free = FreeSteadyCurve(cmp_.velocity, cmp_.v_rest, acceleration=cmp_.acceleration,
                                     memory_offset=cmp_.memory_offset) if free_steady else None
-        self._thin_masks = {}
         self.ctx = cmp_.context()
         self.scored = np.ones(len(cmp_.time), bool) if cmp_.scored is None else cmp_.scored
         self._sims = []  # [(base, key, friction)], the most recently used last (``SIM_CACHE``)
+        self._steadies = []  # [SteadyAlong], the same way
         self.sims = 0
         self.free_inertia = False  # the model written: eq. (8)'s inertia left free beside it (``model_nuisance``)
 
@@ -1011,25 +1048,20 @@ class Engine:
         inertia where ``free_inertia`` is set."""
         return model_nuisance(r, mask, self.c.memory_offset, self.c.acceleration if self.free_inertia else None)
 
-    def residual_at(self, r: np.ndarray, idx: np.ndarray, model: np.ndarray) -> np.ndarray:
-        """The residual ``r`` beside the engine's nuisance (``nuisance``) fitted on the samples
-        ``idx`` (a least-squares step's thinned set: ~20 coefficients need no more), at those
-        samples."""
-        if self.free is None:
-            off = self.c.memory_offset
-            acc = self.c.acceleration if self.free_inertia else None
-            if off is None and acc is None:
-                return r[idx]
-            return r[idx] - model_nuisance(r[idx], np.ones(len(idx), bool), None if off is None else off[idx],
-                                           None if acc is None else acc[idx]).correction
-        key = self._thin_masks.get(id(idx))
-        if key is None or key[0] is not idx:
-            m = np.zeros(len(r), dtype=bool)
-            m[idx] = True
-            if len(self._thin_masks) >= 16:
-                self._thin_masks.clear()
-            self._thin_masks[id(idx)] = key = (idx, m)
-        return self.free.residual_at(r, idx, key[1], model)
+    def residual_at(self, model: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        """The residual of the prediction ``model`` beside the engine's nuisance (``nuisance``)
+        fitted on the samples ``idx`` (a least-squares step's thinned set: ~20 coefficients
+        need no more), at those samples."""
+        meas = self.c.measured
+        if self.free is not None:
+            return self.free.residual_at(meas, model, idx)
+        r = meas[idx] - model[idx]
+        off = self.c.memory_offset
+        acc = self.c.acceleration if self.free_inertia else None
+        if off is None and acc is None:
+            return r
+        return r - model_nuisance(r, np.ones(len(idx), bool), None if off is None else off[idx],
+                                  None if acc is None else acc[idx]).correction
 
     def set_base(self, params: FrictionParams) -> None:
         self.p = params.replace(effects=())
@@ -1061,10 +1093,22 @@ class Engine:
             if k == key and p == self.p:
                 self._sims.append(self._sims.pop(i))
                 return sim
-        sim = simulate_displacement(self.p, self.c.time, self.c.path, stiffness_scale=ss).friction_force
+        sim = simulate_displacement(self.p, self.c.time, self.c.path, stiffness_scale=ss,
+                                    steady=self._steady()).friction_force
         self._sims = self._sims[-(SIM_CACHE - 1):] + [(self.p, key, sim)]
         self.sims += 1
         return sim
+
+    def _steady(self) -> SteadyAlong:
+        """v and S(v) of the base along the path, from the last STEADY_CACHE S(v) (a refit of
+        S(v) perturbs its levels one at a time; every other simulation shares the base's)."""
+        for i, sa in enumerate(self._steadies):
+            if sa.stribeck == self.p.stribeck:
+                self._steadies.append(self._steadies.pop(i))
+                return sa
+        sa = steady_along(self.p, self.c.time, self.c.path)
+        self._steadies = self._steadies[-(STEADY_CACHE - 1):] + [sa]
+        return sa
 
     def _windows(self, fs, ss) -> np.ndarray:
         from ..model.windows import simulate_windows
@@ -1093,6 +1137,7 @@ class FitResult:
 
 
 SIM_CACHE = 4  # simulations the engine keeps (each one float per sample)
+STEADY_CACHE = 2  # v and S(v) along the path the engine keeps (each two floats per sample)
 FIT_SAMPLES = 6000  # residuals a least-squares step works on (an even subsample; the effects are slow)
 
 
@@ -1105,7 +1150,6 @@ def _thinned(mask: np.ndarray) -> np.ndarray:
 def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k0: bool, k0: float,
          max_nfev: int = 60) -> FitResult:
     """Least squares over log g, (log κ0), and every term's free parameters, on ``mask``."""
-    meas = engine.c.measured
     lo, hi = [-math.log(5.0)], [math.log(5.0)]
     if fit_k0:
         lo.append(-math.log(20.0))
@@ -1133,7 +1177,7 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
     def resid(u):
         g, kk, entries = unpack(u)
         m = engine.predict(g, kk, entries)
-        return engine.residual_at(meas - m, idx, m)
+        return engine.residual_at(m, idx)
 
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4, max_nfev=max_nfev,
                         **engine.loss())
@@ -1203,7 +1247,6 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
         return TransitionRefit(params, 1.0, 1.0, [], np.zeros(0))
     from ..model import Stribeck, StribeckSide
 
-    meas = engine.c.measured
     n0, s10 = float(params.n), float(max(params.sigma1, 1e-12))
     sp, sn = params.stribeck.positive, params.stribeck.negative
     # S(v) levels per side, Fs and Fc as factors; vs, δ and σ2 held: a session whose speeds rise
@@ -1235,7 +1278,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
         g, kk, p, entries = unpack(u)
         engine.set_base(p)
         m = engine.predict(g, kk, entries)
-        return engine.residual_at(meas - m, idx, m)
+        return engine.residual_at(m, idx)
 
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)

@@ -15,9 +15,9 @@ _WHERE = {
     "FrictionError": "errors", "ParameterError": "errors", "SignalError": "errors",
     "FrictionParams": "params", "Stribeck": "params", "StribeckSide": "params", "TransitionCurve": "params",
     "as_model": "params", "default_params": "params",
-    "COLUMNS": "simulate", "SimResult": "simulate", "initial_state": "simulate",
+    "COLUMNS": "simulate", "SimResult": "simulate", "SteadyAlong": "simulate", "initial_state": "simulate",
     "simulate_closed_loop": "simulate", "simulate_displacement": "simulate", "simulate_force": "simulate",
-    "stribeck_curve": "simulate", "transition_curve_values": "simulate",
+    "steady_along": "simulate", "stribeck_curve": "simulate", "transition_curve_values": "simulate",
 }
 
 __all__ = sorted(_WHERE)

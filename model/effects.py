@@ -87,9 +87,13 @@ class Context:
     friction_factor: np.ndarray | None = None
     # counts above other thresholds, made once per context (a softening's own min_excursion)
     _counts: dict = field(default_factory=dict, init=False, repr=False, compare=False)
-    # the ripple's phase at the last wavelength asked for: a fit varies the amplitudes far more
+    # the ripple's phase at the last wavelengths asked for: a fit varies the amplitudes far more
     # often than the wavelength (a Jacobian's columns), and the sines are most of a ripple's cost
     _phase: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    # ln(max(|v|, v_floor)/v_ref) per (v_floor, v_ref): a speed-dependent stiffness's fixed abscissa
+    _log_speed: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    # the last FACTORS_KEPT factors made (``Effect.scale``), by effect and values
+    _factors: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def with_friction_factor(self, m: np.ndarray) -> "Context":
         """This context with the friction effects' factor ``m``, sharing its caches (the
@@ -97,6 +101,8 @@ class Context:
         out = dataclasses.replace(self, friction_factor=m)
         object.__setattr__(out, "_counts", self._counts)
         object.__setattr__(out, "_phase", self._phase)
+        object.__setattr__(out, "_log_speed", self._log_speed)
+        object.__setattr__(out, "_factors", self._factors)
         return out
 
     def signal(self, name: str, effect: str) -> np.ndarray:
@@ -115,14 +121,44 @@ class Context:
             self._counts[key] = significant_reversals(self.signal("position", effect), key)
         return self._counts[key]
 
+    def factor_of(self, effect: "Effect", values: Mapping[str, float]) -> np.ndarray:
+        """``effect``'s factor at ``values`` along this motion (read-only), made once for the last
+        FACTORS_KEPT asked for. Only for an effect that does not follow the friction effects
+        (whose factor also depends on theirs)."""
+        key = (effect.name, tuple(sorted(values.items())))
+        hit = self._factors.pop(key, None)
+        if hit is None:
+            hit = np.broadcast_to(np.asarray(effect.factor(values, self), dtype=np.float64), self.time.shape)
+            while len(self._factors) >= FACTORS_KEPT:
+                self._factors.pop(next(iter(self._factors)))
+        self._factors[key] = hit  # the most recently used last
+        return hit
+
+    def log_speed(self, v_floor: float, v_ref: float, effect: str) -> np.ndarray:
+        """ℓ = ln(max(|v|, v_floor)/v_ref) along the context's velocity, made once per pair."""
+        key = (float(v_floor), float(v_ref))
+        if key not in self._log_speed:
+            s = np.maximum(np.abs(self.signal("velocity", effect)), key[0])
+            self._log_speed[key] = np.log(s / key[1])
+        return self._log_speed[key]
+
     def phase_along_position(self, wavelength: float, effect: str) -> tuple[np.ndarray, np.ndarray]:
-        """(sin θ, cos θ) of θ = 2π·x/λ along the context's position, kept for the last λ."""
+        """(sin θ, cos θ) of θ = 2π·x/λ along the context's position, kept for the last
+        PHASES_KEPT λ: a finite-difference Jacobian moves λ and comes back to it for the next
+        column."""
         key = float(wavelength)
-        if key not in self._phase:
+        hit = self._phase.pop(key, None)
+        if hit is None:
             th = 2.0 * np.pi * self.signal("position", effect) / key
-            self._phase.clear()
-            self._phase[key] = (np.sin(th), np.cos(th))
-        return self._phase[key]
+            hit = (np.sin(th), np.cos(th))
+            while len(self._phase) >= PHASES_KEPT:
+                self._phase.pop(next(iter(self._phase)))
+        self._phase[key] = hit  # the most recently used last
+        return hit
+
+
+PHASES_KEPT = 3  # wavelengths whose sines a context keeps (each two floats per sample)
+FACTORS_KEPT = 6  # effects' factors a context keeps (each one float per sample)
 
 
 @dataclass(frozen=True)
@@ -141,7 +177,12 @@ class Effect:
         return tuple(p.name for p in self.params)
 
     def scale(self, values: Mapping[str, float], ctx: Context) -> np.ndarray:
-        return np.broadcast_to(np.asarray(self.factor(values, ctx), dtype=np.float64), ctx.time.shape)
+        """The factor along the context's motion (read-only). One that does not follow the
+        friction effects is kept by the context for its values: a finite-difference Jacobian
+        moves one parameter of one effect at a time, and every other effect's factor repeats."""
+        if _follows(self):
+            return np.broadcast_to(np.asarray(self.factor(values, ctx), dtype=np.float64), ctx.time.shape)
+        return ctx.factor_of(self, values)
 
     def without(self, values: Mapping[str, float]) -> dict:
         """``values`` with the effect's amplitudes at ``neutral``: its shape kept, its factor 1."""
@@ -205,8 +246,7 @@ def _rate_stiffness(v, ctx):
     # κ = e^{c1·ℓ + c2·ℓ²}, ℓ = ln(max(|v|, v_floor)/v_ref): a rate-dependent (viscoelastic)
     # contact, and also what a contact whose transition depends on speed otherwise than eq. (5)
     # says looks like to the model. Quadratic in ℓ: both ends of the speed range may stiffen.
-    s = np.maximum(np.abs(ctx.signal("velocity", "rate_stiffness")), v["v_floor"])
-    ell = np.log(s / v["v_ref"])
+    ell = ctx.log_speed(v["v_floor"], v["v_ref"], "rate_stiffness")
     return np.exp(np.clip(v["c1"] * ell + v["c2"] * ell * ell, -RATE_STIFFNESS_LOG_MAX, RATE_STIFFNESS_LOG_MAX))
 
 
@@ -316,33 +356,12 @@ def significant_reversals(x: np.ndarray, min_excursion: float = 0.0) -> np.ndarr
     """Running count of direction changes of the path ``x`` whose back-travel exceeds
     ``min_excursion`` (a measured position's noise or quantisation step must not count). The
     count steps up at the turning point itself, once the back-travel has confirmed it."""
-    x = np.asarray(x, dtype=np.float64)
-    n = len(x)
-    out = np.zeros(n)
-    if n < 2:
-        return out
-    moves = np.flatnonzero(np.diff(x) != 0.0) + 1
-    turns = []
-    direction = 0.0
-    ext_i = 0
-    ext = x[0]
-    for i in moves:
-        xi = x[i]
-        if direction == 0.0:
-            if abs(xi - x[0]) > min_excursion:
-                direction = 1.0 if xi > x[0] else -1.0
-                ext, ext_i = xi, i
-            continue
-        if (xi - ext) * direction > 0.0:
-            ext, ext_i = xi, i
-        elif (ext - xi) * direction > min_excursion:
-            turns.append(ext_i)
-            direction = -direction
-            ext, ext_i = xi, i
-    if turns:
-        steps = np.zeros(n)
-        np.add.at(steps, np.asarray(turns), 1.0)
-        out = np.cumsum(steps)
+    from .kernels import count_significant_reversals  # compiled: the model's import stays light
+
+    x = np.ascontiguousarray(x, dtype=np.float64)
+    out = np.zeros(len(x))
+    if len(x) >= 2:
+        count_significant_reversals(x, float(min_excursion), out)
     return out
 
 

@@ -502,9 +502,9 @@ def friction_output(model, st, p, kind, tz, tF, dz, dt, v, sc, kap):
 
 # ---------------------------------------------------------------- driver 1: prescribed x(t)
 @helper
-def _displacement_step(model, p, kind, tz, tF, st, t, x, F, Fh, Z, V, k, sc, kap, kap_last, fh, sig1, c_pos, c_neg):
-    """Step k of ``run_displacement``; returns F_h after it (unscaled). σ1 and σ2± come in as
-    scalars: read from ``p`` they would be reloaded every step (the output arrays may alias it)."""
+def _displacement_step(model, p, kind, tz, tF, st, t, x, S, F, Fh, Z, V, k, sc, kap, kap_last, fh, sig1, c_pos, c_neg):
+    """Step k of ``run_displacement_along``; returns F_h after it (unscaled). σ1 and σ2± come in
+    as scalars: read from ``p`` they would be reloaded every step (the output arrays may alias it)."""
     v = V[k]
     if v == 0.0:
         if kap != kap_last:
@@ -513,7 +513,7 @@ def _displacement_step(model, p, kind, tz, tF, st, t, x, F, Fh, Z, V, k, sc, kap
         Fh[k] = sc * fh
     else:
         side = 1.0 if v > 0.0 else -1.0
-        dz, fh = advance_with(model, st, p, kind, tz, tF, x[k] - x[k - 1], side, Fh[k], kap)
+        dz, fh = advance_with(model, st, p, kind, tz, tF, x[k] - x[k - 1], side, S[k], kap)
         F[k] = sc * (fh + sig1 * dz / (t[k] - t[k - 1]) + (c_pos if side > 0.0 else c_neg) * v)
         Fh[k] = sc * fh
     Z[k] = st[S_Z]
@@ -524,12 +524,22 @@ def _displacement_step(model, p, kind, tz, tF, st, t, x, F, Fh, Z, V, k, sc, kap
 def run_displacement(model, p, kind, tz, tF, st, t, x, fsc, ksc, F, Fh, Z, V):
     """Friction along a prescribed displacement; v is the backward difference of x.
 
-    S(v) is evaluated for the whole motion first (``stribeck_pass``, into ``Fh`` as scratch);
-    a step at rest (dx = 0, most steps of an encoder-quantised motion) only copies F_h.
+    S(v) is evaluated for the whole motion first (``stribeck_pass``, into ``Fh`` as scratch:
+    step k reads S(v_k) there before writing F_h), then ``run_displacement_along``.
+    """
+    stribeck_pass(p, t, x, V, Fh)
+    run_displacement_along(model, p, kind, tz, tF, st, t, x, fsc, ksc, V, Fh, F, Fh, Z)
+
+
+@kernel
+def run_displacement_along(model, p, kind, tz, tF, st, t, x, fsc, ksc, V, S, F, Fh, Z):
+    """``run_displacement`` with v and S(v) given (``stribeck_pass``'s V and S, which many
+    simulations along one path with one S(v) share). ``S`` may be ``Fh`` itself.
+
+    A step at rest (dx = 0, most steps of an encoder-quantised motion) only copies F_h.
     Scales given as one value are read once, outside the loop.
     """
     n = t.shape[0]
-    stribeck_pass(p, t, x, V, Fh)
     fh = hysteresis(model, st, p, kind, tz, tF, ksc[0])
     F[0] = fsc[0] * fh
     Fh[0] = fsc[0] * fh
@@ -541,7 +551,7 @@ def run_displacement(model, p, kind, tz, tF, st, t, x, fsc, ksc, F, Fh, Z, V):
         sc = fsc[0]
         kap = ksc[0]
         for k in range(1, n):
-            fh = _displacement_step(model, p, kind, tz, tF, st, t, x, F, Fh, Z, V, k, sc, kap, kap, fh,
+            fh = _displacement_step(model, p, kind, tz, tF, st, t, x, S, F, Fh, Z, V, k, sc, kap, kap, fh,
                                     sig1, c_pos, c_neg)
     else:
         fstep = 1 if fsc.shape[0] > 1 else 0
@@ -549,9 +559,41 @@ def run_displacement(model, p, kind, tz, tF, st, t, x, fsc, ksc, F, Fh, Z, V):
         kap_last = ksc[0]
         for k in range(1, n):
             kap = ksc[k * kstep]
-            fh = _displacement_step(model, p, kind, tz, tF, st, t, x, F, Fh, Z, V, k, fsc[k * fstep], kap,
+            fh = _displacement_step(model, p, kind, tz, tF, st, t, x, S, F, Fh, Z, V, k, fsc[k * fstep], kap,
                                     kap_last, fh, sig1, c_pos, c_neg)
             kap_last = kap
+
+
+# ---------------------------------------------------------------- along a motion
+@kernel
+def count_significant_reversals(x, min_excursion, out):
+    """``out`` (zeros, like ``x``) gets the running count of the direction changes of ``x``
+    whose back-travel exceeds ``min_excursion``, stepping up at the turning point itself (the
+    extremum), once the back-travel has confirmed it (``model.effects.significant_reversals``)."""
+    n = x.shape[0]
+    direction = 0.0
+    ext = x[0]
+    ext_i = 0
+    for i in range(1, n):
+        xi = x[i]
+        if xi == x[i - 1]:
+            continue
+        if direction == 0.0:
+            if abs(xi - x[0]) > min_excursion:
+                direction = 1.0 if xi > x[0] else -1.0
+                ext = xi
+                ext_i = i
+            continue
+        if (xi - ext) * direction > 0.0:
+            ext = xi
+            ext_i = i
+        elif (ext - xi) * direction > min_excursion:
+            out[ext_i] += 1.0
+            direction = -direction
+            ext = xi
+            ext_i = i
+    for i in range(1, n):
+        out[i] += out[i - 1]
 
 
 # ---------------------------------------------------------------- plant, eq. (8)

@@ -15,7 +15,7 @@ import numpy as np
 from . import kernels as K
 from . import layout as L
 from .errors import SignalError
-from .params import FrictionParams
+from .params import FrictionParams, Stribeck
 
 COLUMNS = ("time", "position", "velocity", "applied_force", "friction_force", "hysteresis_force", "z")
 
@@ -112,8 +112,38 @@ def _scale(name: str, a, n: int) -> np.ndarray:
     return a
 
 
+@dataclass(frozen=True, eq=False)
+class SteadyAlong:
+    """v (the backward difference of x) and S(v) of eq. (7) along one prescribed path, for one
+    S(v) (``steady_along``): what every simulation along that path with that S(v) shares. A fit
+    that varies the presliding stiffness, n or σ1 simulates one path many times, and S(v) (an
+    exp and a power per moving sample) is a quarter of each simulation."""
+
+    time: np.ndarray
+    position: np.ndarray
+    stribeck: Stribeck
+    velocity: np.ndarray
+    steady: np.ndarray
+
+    def serves(self, params: FrictionParams, t: np.ndarray, x: np.ndarray) -> bool:
+        """Whether this is the v and S(v) of ``params`` along (t, x)."""
+        return (self.stribeck == params.stribeck and (self.time is t or np.array_equal(self.time, t))
+                and (self.position is x or np.array_equal(self.position, x)))
+
+
+def steady_along(params: FrictionParams, t, x) -> SteadyAlong:
+    """v and S(v) of ``params`` along the prescribed path x(t), for ``simulate_displacement``'s
+    ``steady`` along the same path."""
+    t = _time(t)
+    x = _series("position", x, len(t))
+    _, p, *_ = pack(params)
+    V, S = np.empty(len(t)), np.empty(len(t))
+    K.stribeck_pass(p, t, x, V, S)
+    return SteadyAlong(t, x, params.stribeck, V, S)
+
+
 def simulate_displacement(params: FrictionParams, t, x, *, state: np.ndarray | None = None,
-                          friction_scale=None, stiffness_scale=None) -> SimResult:
+                          friction_scale=None, stiffness_scale=None, steady: SteadyAlong | None = None) -> SimResult:
     """Friction predicted along a prescribed displacement x(t).
 
     The applied force reported is the one that would produce this motion, I·ẍ + F.
@@ -124,6 +154,9 @@ def simulate_displacement(params: FrictionParams, t, x, *, state: np.ndarray | N
     the reported F_h); ``stiffness_scale`` κ (per sample, default 1) multiplies the presliding
     stiffness: F_d is evaluated at κ·z (same maximum force, abscissas divided by κ), LuGre's
     σ0 becomes κ·σ0. Both act inside the time loop, so a plant driven by force feels them.
+
+    ``steady`` (from ``steady_along`` on this path, for this S(v)) skips the pass that
+    computes v and S(v).
     """
     t = _time(t)
     x = _series("position", x, len(t))
@@ -132,8 +165,15 @@ def simulate_displacement(params: FrictionParams, t, x, *, state: np.ndarray | N
     ksc = _scale("stiffness_scale", stiffness_scale, n)
     code, p, kind, tz, tF = pack(params)
     st = initial_state(params) if state is None else state
-    F, Fh, Z, V = (np.empty(n) for _ in range(4))
-    K.run_displacement(code, p, kind, tz, tF, st, t, x, fsc, ksc, F, Fh, Z, V)
+    F, Fh, Z = (np.empty(n) for _ in range(3))
+    if steady is None:
+        V = np.empty(n)
+        K.run_displacement(code, p, kind, tz, tF, st, t, x, fsc, ksc, F, Fh, Z, V)
+    else:
+        if not steady.serves(params, t, x):
+            raise ValueError("steady: computed for another path or another S(v) (steady_along)")
+        V = steady.velocity.copy()
+        K.run_displacement_along(code, p, kind, tz, tF, st, t, x, fsc, ksc, V, steady.steady, F, Fh, Z)
     acc = np.zeros(n)
     acc[1:] = np.diff(V) / np.diff(t)
     return SimResult(t, x, V, params.inertia * acc + F, F, Fh, Z, params.model, memory_summary(st))

@@ -251,3 +251,38 @@ def test_effect_values_are_printed_with_the_units_of_the_parameter_set():
     assert format_values("cyclic_softening", {"h": -0.5999, "n_c": 22.04, "min_excursion": 7.9e-7},
                          {"position": "m"}, {"h": 0.068, "n_c": 3.6}) == \
         "h = -0.5999 ± 0.068, n_c = 22.04 ± 3.6 reversals, min_excursion = 7.9e-07 m"
+
+
+def test_significant_reversals_step_up_at_each_turning_point():
+    # a zigzag through known extrema, sampled so each extremum is a sample: the count steps by
+    # one exactly at every turning point whose back-travel exceeds the threshold, and stays
+    # flat over a dwell
+    ends = [0.0, 1.0, 0.3, 0.35, -0.5, 0.2]
+    x = np.concatenate([np.linspace(a, b, 40, endpoint=False) for a, b in zip(ends[:-1], ends[1:])] + [[ends[-1]]])
+    x = np.concatenate([x[:100], np.full(25, x[100]), x[100:]])  # a dwell mid-stroke
+    turns_at = [i for i in range(1, len(x) - 1) if (x[i] - x[i - 1]) * (x[i + 1] - x[i]) < 0]
+    assert len(turns_at) == 4
+    steps = np.flatnonzero(np.diff(significant_reversals(x, 0.0)) > 0) + 1
+    assert steps.tolist() == turns_at
+    big = np.flatnonzero(np.diff(significant_reversals(x, 0.1)) > 0) + 1
+    # above a 0.1 threshold the 0.3 → 0.35 wiggle (a back-travel of 0.05) is no pair of
+    # reversals: the stroke from 1.0 runs on to −0.5, and only the turns at 1.0 and −0.5 count
+    assert big.tolist() == [turns_at[0], turns_at[3]]
+
+
+def test_a_factor_asked_for_again_follows_its_new_values():
+    # the context keeps the factors it made; asked for at other values — as a Jacobian moves
+    # one parameter, then goes back — each must be the closed form at those values
+    t = np.linspace(0.0, 10.0, 501)
+    x = 0.01 * np.sin(t)
+    load = 50.0 + 20.0 * np.sin(t / 2.0)
+    ctx = Context(time=t, position=x, velocity=np.gradient(x, t), load=load)
+    for alpha in (1.0, 0.5, 2.0, 1.0, 0.7, 1.3, 0.9, 2.4, 1.0, 0.5):
+        got = EFFECTS["normal_load"].scale({"alpha": alpha, "N0": 50.0}, ctx)
+        np.testing.assert_allclose(got, (load / 50.0) ** alpha, rtol=1e-14)
+    for lam in (0.004, 0.005, 0.004, 0.006, 0.007, 0.0045, 0.004):
+        got = EFFECTS["position_ripple"].scale({"a": 0.1, "wavelength": lam, "phase": 0.3}, ctx)
+        np.testing.assert_allclose(got, 1.0 + 0.1 * np.sin(2 * np.pi * x / lam + 0.3), rtol=1e-12)
+    for c1 in (0.2, -0.1, 0.2):
+        got = EFFECTS["rate_stiffness"].scale({"c1": c1, "c2": 0.0, "v_ref": 0.01, "v_floor": 1e-4}, ctx)
+        np.testing.assert_allclose(got, (np.maximum(np.abs(ctx.velocity), 1e-4) / 0.01) ** c1, rtol=1e-12)

@@ -144,3 +144,40 @@ def test_stiffness_scale_changing_at_rest_moves_along_the_curve(kuka):
     expected = np.interp(kap[rest] * z[0], kuka.transition_curve.z, kuka.transition_curve.F)
     np.testing.assert_allclose(r.hysteresis_force[rest], expected, rtol=1e-12)
     assert r.hysteresis_force[-1] > 1.2 * r.hysteresis_force[np.searchsorted(t, 9.99)]
+
+
+@pytest.mark.parametrize("kind", ["leuven", "lugre", "static"])
+def test_a_shared_steady_curve_gives_the_simulation_it_replaces(kuka, kind):
+    # ``steady_along`` holds v and S(v) of one path for one S(v): every simulation along that
+    # path with that S(v) — here at four presliding stiffnesses — must be the one computed
+    # without it, to the bit, and S(v) itself eq. (7) (Table I) at each velocity
+    from leuven_friction.model import steady_along
+
+    p = as_model(kuka, kind)
+    t = np.arange(0.0, 2.0, 1e-4)
+    x = 2e-4 * np.sin(2 * np.pi * 0.5 * t) + 6e-5 * np.sin(2 * np.pi * 2.3 * t) + 1e-3 * t
+    shared = steady_along(p, t, x)
+    for side, sp in ((1, p.stribeck.positive), (-1, p.stribeck.negative)):
+        v = shared.velocity[shared.velocity * side > 0]
+        expected = sp.Fc + (sp.Fs - sp.Fc) * np.exp(-np.abs(v / sp.vs) ** sp.delta)  # eq. (7)
+        np.testing.assert_allclose(shared.steady[shared.velocity * side > 0], expected, rtol=1e-12)
+    for kappa in (0.3, 1.0, 2.5, np.linspace(0.5, 2.0, len(t))):
+        a = simulate_displacement(p, t, x, stiffness_scale=kappa)
+        b = simulate_displacement(p, t, x, stiffness_scale=kappa, steady=shared)
+        np.testing.assert_array_equal(a.friction_force, b.friction_force)
+        np.testing.assert_array_equal(a.velocity, b.velocity)
+
+
+def test_a_steady_curve_of_another_s_or_path_is_refused(kuka):
+    from leuven_friction.model import steady_along
+
+    t = np.arange(0.0, 1.0, 1e-3)
+    x = 1e-3 * np.sin(2 * np.pi * t)
+    shared = steady_along(kuka, t, x)
+    other = kuka.replace(stribeck=kuka.stribeck.__class__(
+        kuka.stribeck.positive.__class__(**{**kuka.stribeck.positive.__dict__, "Fc": kuka.stribeck.positive.Fc * 1.1}),
+        kuka.stribeck.negative))
+    with pytest.raises(ValueError, match="another path or another S"):
+        simulate_displacement(other, t, x, steady=shared)
+    with pytest.raises(ValueError, match="another path or another S"):
+        simulate_displacement(kuka, t, 2.0 * x, steady=shared)
