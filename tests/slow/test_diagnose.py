@@ -404,7 +404,7 @@ def test_a_drift_a_rising_sweep_hides_is_named_once_the_speeds_are_shuffled():
     # (``synth.hidden.shuffled_levels``) — gets the drift named, rising like the generator's
     # (measured: b = +0.09, about half the generator's change; part of it is still taken by the
     # level and S(v) refitted beside it). Over the suite's joints and stages the same change of
-    # schedule names 19 of 21 drifts against 16 (README, "A drift on a sweep in rising speeds")
+    # schedule names 19 of 21 drifts against 16 (docs/diagnosis-history.md, "A drift on a sweep in rising speeds")
     from leuven_friction.identify.fit import fit_recordings
     from synth.hidden import SUITE_RATE, shuffled_levels
 
