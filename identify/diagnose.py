@@ -867,19 +867,21 @@ class FreeSteadyCurve:
 
     def _on(self, idx: np.ndarray) -> "CurveSamples":
         """The curve's parts at the samples ``idx``, kept for the index arrays in use (a
-        least-squares fit evaluates the same samples many times)."""
+        least-squares fit evaluates the same samples many times): up to 16 of them, and up to
+        CURVE_CACHE_RECORDS records' worth of samples, however long the record."""
         hit = self._cache.get(id(idx))
-        if hit is not None and hit[0] is idx:
-            return hit[1]
+        if hit is not None and hit.idx is idx:
+            return hit
         i0, i1, w0, w1 = self.i0[idx], self.i1[idx], self.w0[idx], self.w1[idx]
         k = self.k
         G = (np.bincount(i0 * k + i0, w0 * w0, k * k) + np.bincount(i1 * k + i1, w1 * w1, k * k)
              + np.bincount(i0 * k + i1, w0 * w1, k * k) + np.bincount(i1 * k + i0, w1 * w0, k * k)).reshape(k, k)
-        fixed = [a[idx] for a in (self.memory_offset, self.acceleration) if a is not None]
-        if len(self._cache) >= 16:
+        fixed = [a[idx] for a in self._fixed()]
+        held = sum(len(a.idx) for a in self._cache.values())
+        if len(self._cache) >= 16 or held + len(idx) > CURVE_CACHE_RECORDS * self.n:
             self._cache.clear()
-        at = CurveSamples(i0, i1, w0, w1, G, self.rest[idx], fixed)
-        self._cache[id(idx)] = (idx, at)
+        at = CurveSamples(idx, i0, i1, w0, w1, G, self.rest[idx], fixed)
+        self._cache[id(idx)] = at
         return at
 
     def solve(self, r: np.ndarray, idx: np.ndarray, extra=()) -> tuple[np.ndarray, np.ndarray]:
@@ -929,9 +931,8 @@ class FreeSteadyCurve:
         model's friction), one more column: a level of its own for the friction at rest, the
         transition curve's, which need not share S(v)'s level g."""
         idx = self._indices(mask)
-        extra = self._extra(model)
-        c = self.solve(r[idx], idx, [col[idx] for col in extra])[0]
-        return self.evaluate(c, extra)
+        c = self.solve(r[idx], idx, self._extra(model, self._on(idx)))[0]
+        return self.evaluate(c, self._extra(model))
 
     def _indices(self, mask: np.ndarray) -> np.ndarray:
         """The samples of ``mask``, one index array per mask in use (``_on`` keeps the curve's
@@ -943,11 +944,17 @@ class FreeSteadyCurve:
             self._masks[id(mask)] = hit = (mask, np.flatnonzero(mask))
         return hit[1]
 
-    def _extra(self, model) -> list:
-        """The columns beside the hats over every sample: the level at rest (with ``model``),
-        the memory's constant, the mean acceleration."""
-        extra = [] if model is None else [np.where(self.rest, model, 0.0)]
-        return extra + [a for a in (self.memory_offset, self.acceleration) if a is not None]
+    def _fixed(self) -> list:
+        """The fixed columns beside the hats, in their order: the memory's constant, the mean
+        acceleration (each where the curve has it)."""
+        return [a for a in (self.memory_offset, self.acceleration) if a is not None]
+
+    def _extra(self, model, at: "CurveSamples | None" = None) -> list:
+        """The columns beside the hats — the level at rest (with ``model``, the model's
+        friction), then ``_fixed`` — over every sample, or at the samples of ``at``."""
+        if at is None:
+            return ([] if model is None else [np.where(self.rest, model, 0.0)]) + self._fixed()
+        return ([] if model is None else [np.where(at.rest, model[at.idx], 0.0)]) + at.fixed
 
     def residual_at(self, measured: np.ndarray, model: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """``measured − model`` minus the correction fitted to it (with the level at rest) at
@@ -955,8 +962,11 @@ class FreeSteadyCurve:
         those samples only."""
         r = measured[idx] - model[idx]
         at = self._on(idx)
-        extra = [np.where(at.rest, model[idx], 0.0)] + at.fixed
+        extra = self._extra(model, at)
         return r - self.evaluate(self.solve(r, idx, extra)[0], extra, at)
+
+
+CURVE_CACHE_RECORDS = 6  # ``FreeSteadyCurve._on`` keeps its parts for at most this many records' worth of samples
 
 
 class CurveSamples(NamedTuple):
@@ -964,6 +974,7 @@ class CurveSamples(NamedTuple):
     and weights), their normal matrix, which samples are at rest, and the fixed columns there
     (the memory's constant, the mean acceleration, where the curve has them)."""
 
+    idx: np.ndarray
     i0: np.ndarray
     i1: np.ndarray
     w0: np.ndarray
@@ -1103,7 +1114,7 @@ class Engine:
         """v and S(v) of the base along the path, from the last STEADY_CACHE S(v) (a refit of
         S(v) perturbs its levels one at a time; every other simulation shares the base's)."""
         for i, sa in enumerate(self._steadies):
-            if sa.stribeck == self.p.stribeck:
+            if sa.same_curve(self.p):
                 self._steadies.append(self._steadies.pop(i))
                 return sa
         sa = steady_along(self.p, self.c.time, self.c.path)

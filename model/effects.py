@@ -31,7 +31,7 @@ from typing import Callable, Mapping
 
 import numpy as np
 
-from .errors import ParameterError
+from .errors import ParameterError, SignalError
 
 
 @dataclass(frozen=True)
@@ -92,7 +92,7 @@ class Context:
     _phase: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     # ln(max(|v|, v_floor)/v_ref) per (v_floor, v_ref): a speed-dependent stiffness's fixed abscissa
     _log_speed: dict = field(default_factory=dict, init=False, repr=False, compare=False)
-    # the last FACTORS_KEPT factors made (``Effect.scale``), by effect and values
+    # the last FACTORS_KEPT factors made (``Effect.scale``), by the effect's factor and its values
     _factors: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def with_friction_factor(self, m: np.ndarray) -> "Context":
@@ -122,43 +122,49 @@ class Context:
         return self._counts[key]
 
     def factor_of(self, effect: "Effect", values: Mapping[str, float]) -> np.ndarray:
-        """``effect``'s factor at ``values`` along this motion (read-only), made once for the last
-        FACTORS_KEPT asked for. Only for an effect that does not follow the friction effects
-        (whose factor also depends on theirs)."""
-        key = (effect.name, tuple(sorted(values.items())))
-        hit = self._factors.pop(key, None)
-        if hit is None:
-            hit = np.broadcast_to(np.asarray(effect.factor(values, self), dtype=np.float64), self.time.shape)
-            while len(self._factors) >= FACTORS_KEPT:
-                self._factors.pop(next(iter(self._factors)))
-        self._factors[key] = hit  # the most recently used last
-        return hit
+        """``effect``'s factor at ``values`` along this motion (read-only), kept for the last
+        FACTORS_KEPT asked for. Not for an effect that follows the friction effects, whose
+        factor also depends on theirs."""
+        assert not _follows(effect), effect.name
+        return _kept(self._factors, (effect.factor, tuple(sorted(values.items()))), FACTORS_KEPT, self.time.size,
+                     lambda: np.broadcast_to(np.asarray(effect.factor(values, self), dtype=np.float64),
+                                             self.time.shape))
 
     def log_speed(self, v_floor: float, v_ref: float, effect: str) -> np.ndarray:
-        """ℓ = ln(max(|v|, v_floor)/v_ref) along the context's velocity, made once per pair."""
+        """ℓ = ln(max(|v|, v_floor)/v_ref) along the context's velocity, kept for the last
+        pairs asked for (a speed-dependent stiffness's abscissa: its v_floor, v_ref are fixed)."""
         key = (float(v_floor), float(v_ref))
-        if key not in self._log_speed:
-            s = np.maximum(np.abs(self.signal("velocity", effect)), key[0])
-            self._log_speed[key] = np.log(s / key[1])
-        return self._log_speed[key]
+        return _kept(self._log_speed, key, 2, self.time.size,
+                     lambda: np.log(np.maximum(np.abs(self.signal("velocity", effect)), key[0]) / key[1]))
 
     def phase_along_position(self, wavelength: float, effect: str) -> tuple[np.ndarray, np.ndarray]:
         """(sin θ, cos θ) of θ = 2π·x/λ along the context's position, kept for the last
         PHASES_KEPT λ: a finite-difference Jacobian moves λ and comes back to it for the next
         column."""
         key = float(wavelength)
-        hit = self._phase.pop(key, None)
-        if hit is None:
+
+        def make():
             th = 2.0 * np.pi * self.signal("position", effect) / key
-            hit = (np.sin(th), np.cos(th))
-            while len(self._phase) >= PHASES_KEPT:
-                self._phase.pop(next(iter(self._phase)))
-        self._phase[key] = hit  # the most recently used last
-        return hit
+            return np.sin(th), np.cos(th)
+
+        return _kept(self._phase, key, PHASES_KEPT, 2 * self.time.size, make)
 
 
-PHASES_KEPT = 3  # wavelengths whose sines a context keeps (each two floats per sample)
-FACTORS_KEPT = 6  # effects' factors a context keeps (each one float per sample)
+PHASES_KEPT = 3  # wavelengths whose sines a context keeps
+FACTORS_KEPT = 6  # effects' factors a context keeps
+CACHE_FLOATS = 8_000_000  # … and at most this many floats per cache (64 MB), however long the motion
+
+
+def _kept(cache: dict, key, most: int, floats: int, make: Callable):
+    """``cache[key]``, made by ``make()`` if absent; the cache keeps the most recently used
+    entries, at most ``most`` and at most CACHE_FLOATS floats (each entry holds ``floats``)."""
+    hit = cache.pop(key, None)
+    if hit is None:
+        hit = make()
+        while cache and len(cache) >= max(1, min(most, CACHE_FLOATS // max(floats, 1))):
+            cache.pop(next(iter(cache)))
+    cache[key] = hit  # the most recently used last
+    return hit
 
 
 @dataclass(frozen=True)
@@ -265,7 +271,7 @@ def _presliding_range(v, ctx):
 
 
 def _stiffness(v, ctx):
-    return np.full(ctx.time.shape, v["kappa"])
+    return v["kappa"]  # one number: ``Effect.scale`` broadcasts it along the motion
 
 
 EFFECTS: dict[str, Effect] = {e.name: e for e in (
@@ -359,6 +365,8 @@ def significant_reversals(x: np.ndarray, min_excursion: float = 0.0) -> np.ndarr
     from .kernels import count_significant_reversals  # compiled: the model's import stays light
 
     x = np.ascontiguousarray(x, dtype=np.float64)
+    if x.ndim != 1:
+        raise SignalError(f"position: need a 1-D series to count reversals along, got shape {x.shape}")
     out = np.zeros(len(x))
     if len(x) >= 2:
         count_significant_reversals(x, float(min_excursion), out)

@@ -95,6 +95,7 @@ def stribeck_pass(p, t, x, V, S):
     V[0] = 0.0
     vlast = 0.0
     slast = p[P_SP]
+    S[0] = slast  # at rest: F_s+ (no step reads it)
     for k in range(1, t.shape[0]):
         v = (x[k] - x[k - 1]) / (t[k] - t[k - 1])
         V[k] = v

@@ -115,31 +115,43 @@ def _scale(name: str, a, n: int) -> np.ndarray:
 @dataclass(frozen=True, eq=False)
 class SteadyAlong:
     """v (the backward difference of x) and S(v) of eq. (7) along one prescribed path, for one
-    S(v) (``steady_along``): what every simulation along that path with that S(v) shares. A fit
-    that varies the presliding stiffness, n or σ1 simulates one path many times, and S(v) (an
-    exp and a power per moving sample) is a quarter of each simulation."""
+    S(v) (``steady_along``; read-only copies): what every simulation along that path with that
+    S(v) shares. A fit that varies the presliding stiffness, n or σ1 simulates one path many
+    times, and S(v) (an exp and a power per moving sample) is a quarter of each simulation.
+    ``steady[0]``, at rest before the first step, is F_s of the positive side (never used)."""
 
     time: np.ndarray
     position: np.ndarray
-    stribeck: Stribeck
+    curve: tuple  # ``steady_curve_key`` of the S(v) it holds
     velocity: np.ndarray
     steady: np.ndarray
 
+    def same_curve(self, params: FrictionParams) -> bool:
+        """Whether ``params`` have the S(v) this holds (σ2, which eq. (7) does not hold, aside)."""
+        return self.curve == steady_curve_key(params.stribeck)
+
     def serves(self, params: FrictionParams, t: np.ndarray, x: np.ndarray) -> bool:
         """Whether this is the v and S(v) of ``params`` along (t, x)."""
-        return (self.stribeck == params.stribeck and (self.time is t or np.array_equal(self.time, t))
+        return (self.same_curve(params) and (self.time is t or np.array_equal(self.time, t))
                 and (self.position is x or np.array_equal(self.position, x)))
+
+
+def steady_curve_key(stribeck: Stribeck) -> tuple:
+    """What of S(v) the steady pass reads: F_s, F_c, v_s, δ of each side (eq. (7))."""
+    return tuple((sd.Fs, sd.Fc, sd.vs, sd.delta) for sd in (stribeck.positive, stribeck.negative))
 
 
 def steady_along(params: FrictionParams, t, x) -> SteadyAlong:
     """v and S(v) of ``params`` along the prescribed path x(t), for ``simulate_displacement``'s
     ``steady`` along the same path."""
-    t = _time(t)
-    x = _series("position", x, len(t))
+    t = _time(t).copy()
+    x = _series("position", x, len(t)).copy()
     _, p, *_ = pack(params)
     V, S = np.empty(len(t)), np.empty(len(t))
     K.stribeck_pass(p, t, x, V, S)
-    return SteadyAlong(t, x, params.stribeck, V, S)
+    for a in (t, x, V, S):
+        a.setflags(write=False)
+    return SteadyAlong(t, x, steady_curve_key(params.stribeck), V, S)
 
 
 def simulate_displacement(params: FrictionParams, t, x, *, state: np.ndarray | None = None,

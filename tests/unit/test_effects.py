@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from leuven_friction.model import FrictionParams, ParameterError, simulate_displacement, simulate_force
+from leuven_friction.model import FrictionParams, ParameterError, SignalError, simulate_displacement, simulate_force
 from leuven_friction.model.effects import EFFECTS, Context, Signals, predict, significant_reversals, validate_effect_entry
 
 
@@ -264,6 +264,8 @@ def test_significant_reversals_step_up_at_each_turning_point():
     assert len(turns_at) == 4
     steps = np.flatnonzero(np.diff(significant_reversals(x, 0.0)) > 0) + 1
     assert steps.tolist() == turns_at
+    with pytest.raises(SignalError, match="1-D"):
+        significant_reversals(np.vstack([x, x]))
     big = np.flatnonzero(np.diff(significant_reversals(x, 0.1)) > 0) + 1
     # above a 0.1 threshold the 0.3 → 0.35 wiggle (a back-travel of 0.05) is no pair of
     # reversals: the stroke from 1.0 runs on to −0.5, and only the turns at 1.0 and −0.5 count
@@ -283,6 +285,11 @@ def test_a_factor_asked_for_again_follows_its_new_values():
     for lam in (0.004, 0.005, 0.004, 0.006, 0.007, 0.0045, 0.004):
         got = EFFECTS["position_ripple"].scale({"a": 0.1, "wavelength": lam, "phase": 0.3}, ctx)
         np.testing.assert_allclose(got, 1.0 + 0.1 * np.sin(2 * np.pi * x / lam + 0.3), rtol=1e-12)
+    # an effect of the same name with another factor is another effect, not a cache hit
+    import dataclasses
+
+    halved = dataclasses.replace(EFFECTS["normal_load"], factor=lambda v, c: 0.5 * (c.load / v["N0"]) ** v["alpha"])
+    np.testing.assert_allclose(halved.scale({"alpha": 1.0, "N0": 50.0}, ctx), 0.5 * load / 50.0, rtol=1e-14)
     for c1 in (0.2, -0.1, 0.2):
         got = EFFECTS["rate_stiffness"].scale({"c1": c1, "c2": 0.0, "v_ref": 0.01, "v_floor": 1e-4}, ctx)
         np.testing.assert_allclose(got, (np.maximum(np.abs(ctx.velocity), 1e-4) / 0.01) ** c1, rtol=1e-12)

@@ -181,3 +181,11 @@ def test_a_steady_curve_of_another_s_or_path_is_refused(kuka):
         simulate_displacement(other, t, x, steady=shared)
     with pytest.raises(ValueError, match="another path or another S"):
         simulate_displacement(kuka, t, 2.0 * x, steady=shared)
+    x *= 3.0  # the caller's path changed in place: the copy kept is not that path any more
+    with pytest.raises(ValueError, match="another path or another S"):
+        simulate_displacement(kuka, t, x, steady=shared)
+    # σ2 is not part of eq. (7)'s S(v): a parameter set differing only there is served
+    pos = kuka.stribeck.positive
+    viscous = kuka.replace(stribeck=kuka.stribeck.__class__(
+        pos.__class__(**{**pos.__dict__, "sigma2": pos.sigma2 * 2.0}), kuka.stribeck.negative))
+    assert shared.same_curve(viscous) and not shared.same_curve(other)
