@@ -74,13 +74,54 @@ _KIND = {"s": "time", "m": "length", "rad": "angle", "N": "force", "N*m": "torqu
          "rad/s": "angular speed", "degC": "temperature", "K": "temperature"}
 
 
+# a product's factors may be written with any of these between them (N·m, N*m, N.m, N m, N×m)
+_PRODUCT = re.compile(r"\s*[*·⋅.×]\s*|\s+")
+# the single units a product or a quotient is made of, by kind (the lower-case keys of UNITS)
+_FORCE = ("n", "mn", "un", "µn", "kn")
+_LENGTH = ("m", "mm", "um", "µm", "nm")
+UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm; rad, mrad, urad, deg; N, mN, uN, kN; their products for a torque "
+                  "(N·m, N*m, N.m, mN·m, N·mm, Nmm, mNm) and quotients for a speed (mm/s, deg/s, rad/s); °C, K")
+
+
+def _single(word: str) -> tuple[float, str] | None:
+    """A unit written as one word: UNITS, or a force and a length run together (Nmm, mNm, kNm)."""
+    if word in UNITS:
+        return UNITS[word]
+    for f in _FORCE:
+        if word.startswith(f) and word[len(f):] in _LENGTH and word[len(f):] != "nm":
+            return UNITS[f][0] * UNITS[word[len(f):]][0], "N*m"
+    return None
+
+
+def _compound(key: str) -> tuple[float, str] | None:
+    """A product of a force and a length (a torque) or a quotient of a length or an angle by a
+    time (a speed), each part a ``_single`` unit; None for anything else."""
+    num, slash, den = key.partition("/")
+    parts = [_single(w) for w in _PRODUCT.split(num.strip()) if w]
+    if not parts or any(p is None for p in parts):
+        return None
+    factor = float(np.prod([p[0] for p in parts]))
+    dims = sorted(p[1] for p in parts)
+    if slash:
+        d = _single(den.strip())
+        if len(parts) != 1 or d is None or d[1] != "s" or dims[0] not in ("m", "rad"):
+            return None
+        return factor / d[0], f"{dims[0]}/s"
+    if dims == ["N", "m"]:
+        return factor, "N*m"
+    return (factor, dims[0]) if len(dims) == 1 else None
+
+
 def unit_of(unit: str, sig: str) -> tuple[float, str] | None:
     """(factor to SI, SI unit) of a header's unit for ``sig``; None when unknown. 'Nm' in a force
-    or friction column is newton-metre, not nanometre."""
-    key = unit.strip().lower().replace(" ", "") if unit.strip().lower() != "n m" else "n m"
-    if key == "nm" and sig in ("force", "friction"):
-        key = "nm_torque"
-    return UNITS.get(key)
+    or friction column is newton-metre, not nanometre; a torque may be written as a product in
+    any of the usual ways (N·m, N*m, N.m, mN·m, N·mm, Nmm), a speed as a quotient (mm/s)."""
+    key = unit.strip().lower()
+    if key.replace(" ", "") == "nm" and sig in ("force", "friction"):
+        return UNITS["nm_torque"]
+    if key.replace(" ", "") in UNITS:
+        return UNITS[key.replace(" ", "")]
+    return _compound(key)
 
 
 def _fits(unit: str | None, sig: str) -> bool:
@@ -315,7 +356,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         unit = (units or {}).get(sig) or headers[col][1]
         if unit is not None and sig != "temperature":
             if unit_of(unit, sig) is None:
-                raise DataError(f"{path}: column {col!r}: unknown unit {unit!r}")
+                raise DataError(f"{path}: column {col!r}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
             factor, si = unit_of(unit, sig)
             if si not in SI_OF[sig]:
                 raise DataError(f"{path}: column {col!r} was taken as {sig}, but its unit {unit!r} is a {_KIND[si]} "

@@ -289,6 +289,28 @@ def test_a_unit_of_another_kind_is_refused_naming_the_column(tmp_path):
         load_recording(path)
 
 
+@pytest.mark.parametrize("unit, factor", [("N·m", 1.0), ("N*m", 1.0), ("N.m", 1.0), ("N m", 1.0), ("Nm", 1.0),
+                                          ("N·mm", 1e-3), ("N*mm", 1e-3), ("Nmm", 1e-3), ("mN·m", 1e-3),
+                                          ("mN*m", 1e-3), ("mNm", 1e-3), ("kN·m", 1e3)])
+def test_a_torque_reads_in_the_ways_it_is_written(tmp_path, unit, factor):
+    # a torque is a force times a length however the product is spelt: 250 in the file is
+    # 250·(force unit)·(length unit) in N·m
+    path = tmp_path / "torque.csv"
+    path.write_text(f"time [ms],angle [deg],torque [{unit}]\n" + "".join(f"{i},{0.1 * i},250\n" for i in range(20)))
+    rec = load_recording(path)
+    assert rec.units["force"] == "N*m"
+    np.testing.assert_allclose(rec.force, 250.0 * factor, rtol=1e-12)
+    np.testing.assert_allclose(rec.position[1], 0.1 * np.pi / 180, rtol=1e-12)
+    np.testing.assert_allclose(rec.time[1], 1e-3, rtol=1e-12)
+
+
+def test_an_unknown_unit_is_refused_with_the_known_ones(tmp_path):
+    path = tmp_path / "odd.csv"
+    path.write_text("time [s],position [furlong],force [N]\n" + "".join(f"{i},{i},{i}\n" for i in range(20)))
+    with pytest.raises(DataError, match=r"column 'position \[furlong\]': unknown unit 'furlong' \(known: s, ms.*N·mm"):
+        load_recording(path)
+
+
 def test_columns_a_logger_adds_are_not_taken_by_their_words(tmp_path):
     # a file that loaded before the names' words were read loads the same: a controller's friction
     # model, a reference, a current, a load cell, a motor temperature with blanks and a sample
