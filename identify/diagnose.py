@@ -1209,6 +1209,8 @@ CURVE_FACTOR_MAX = 20.0  # each segment of a piecewise-linear F_d refitted withi
 CURVE_GROUPS_MAX = 8  # … in at most this many groups of neighbouring segments (each one simulation per Jacobian)
 CURVE_MIN_GAIN = 0.1  # … and only if the model alone then leaves this much less RMS gap
 SIGMA1_REFIT_MAX = 100.0  # σ1 refits within this factor of the file's
+N_REFIT = (1.0, 40.0)  # n of eq. (5) refits within this range (at 40 the transition is all but a corner)
+INERTIA_ABSENT = 0.05  # friction following the acceleration as if I were under this share of the I it was taken with
 BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
 REFIT_NFEV_FROM = 20  # least-squares steps of a refit that starts from another's solution (each step simulates)
 
@@ -1294,9 +1296,9 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)
     c = math.log(CURVE_FACTOR_MAX)
-    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(1.0 / n0), -math.log(SIGMA1_REFIT_MAX)], np.full(NS, -b),
+    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(N_REFIT[0] / n0), -math.log(SIGMA1_REFIT_MAX)], np.full(NS, -b),
                          np.full(NC, -c), [f[2] for t in terms for f in t.free]])
-    hi = np.concatenate([[math.log(5), math.log(20), math.log(40.0 / n0), math.log(SIGMA1_REFIT_MAX)], np.full(NS, b),
+    hi = np.concatenate([[math.log(5), math.log(20), math.log(N_REFIT[1] / n0), math.log(SIGMA1_REFIT_MAX)], np.full(NS, b),
                          np.full(NC, c), [f[3] for t in terms for f in t.free]])
     u0 = np.concatenate([np.zeros(nb), prior_u]) if start is None else np.asarray(start, float)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
@@ -2467,8 +2469,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         s1_ratio = final_base.sigma1 / max(params.sigma1, 1e-300)
         s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's: the record pushes it further)"
                     if abs(abs(math.log(max(s1_ratio, 1e-300))) - math.log(SIGMA1_REFIT_MAX)) < 0.01 else "")
+        n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further)"
+                   if min(abs(math.log(final_base.n / b)) for b in N_REFIT) < 0.01 else "")
         cmp_.notes.append(f"the model written (every step) refits, besides the level, the stiffness and the effects: "
-                          f"n {params.n:.3g} → {final_base.n:.3g}, σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}"
+                          f"n {params.n:.3g} → {final_base.n:.3g}{n_bound}, "
+                          f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}"
                           f"{s1_bound}, "
                           f"the S(v) levels ×{min(levels):.3f} … ×{max(levels):.3f}"
                           + (", the transition curve's segments" if refit_curve else "")
@@ -2482,6 +2487,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"inertia refitted beside it: the recording's friction follows the acceleration as if I "
                           f"were {cmp_.inertia + d_i:.4g}, against the {cmp_.inertia:.4g} it was taken with (not "
                           f"written: a misfit of the model that follows the acceleration enters it too)")
+        if cmp_.inertia + d_i < INERTIA_ABSENT * cmp_.inertia:
+            # a measured friction logged under a force's name (``torque``) carries no I·ẍ at all
+            cmp_.notes.append(f"that is under {INERTIA_ABSENT:.0%} of the inertia the friction was taken with: the "
+                              f"column read as the applied force shows almost no inertial term. If it is measured "
+                              f"friction, name it so (friction, friction_torque) or pass --columns friction=<column>; "
+                              f"if it is the applied force, give this machine's inertia (--params)")
     regimes = {}
     # what the file written predicts: nothing named, it is the model as given (the base refitted
     # alone is a step of the report, not the file: the diagnosis adds effects, `fit` makes bases)

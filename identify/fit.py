@@ -383,7 +383,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         else:
             notes.append(f"{pr.source}: {len(fb)} force-driven and {len(mb)} motion-driven presliding branch(es)")
     for d in datasets:
+        found = len(d.branches)
         d.branches = _thin(d.branches)
+        if found > len(d.branches):
+            notes.append(f"{d.name}: the {len(d.branches)} longest of its {found} presliding branches enter the "
+                         f"transition curve's likelihood (at most {MAX_BRANCHES} per data set)")
     slid = sliding_branches(datasets)
     if slid:
         notes.append(f"{len(slid)} presliding branch(es) moved over {BRANCH_SPAN_RATIO:g}× the median branch "
@@ -611,7 +615,7 @@ def fit_report(res: FitResult) -> str:
     lines.append(f"    units                    : position {u.get('position')}, force {u.get('force')}, time {u.get('time')}")
     if res.levels is not None:
         lines.append(f"    levels of S(v)           : {len(res.levels.velocity)}")
-    lines.append(f"    presliding branches      : {res.n_branches}")
+    lines.append(f"    presliding branches used : {res.n_branches}")
     for side, dec in res.decisions.items():
         if dec.fit is not None:
             lines.append(f"    Markov chi2 ({side})  : {dec.fit.chi2:.3g} for {dec.fit.dof} degrees of freedom ({dec.model})")

@@ -235,6 +235,9 @@ def _level_residuals(p, levels):
 REFINED_TOP_MIN = 0.5  # the refined F_d's top must keep at least this fraction of the maximum-likelihood one
 
 
+PINNED = 1e-3  # a refined parameter within this fraction of its range's end is at that end
+
+
 def refine_fit(res, preps: list[Prepared], *, max_samples: int = 20000, max_nfev: int = 20, sigma1_given: bool = True):
     """Refine ``res`` (a ``fit.FitResult``) in place of its estimates; see the module docstring.
     σ1 is refined too where the data determine it (its σ below half its value); otherwise the
@@ -371,11 +374,29 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                           "the Markov and maximum-likelihood estimates (residual RMS "
                           + "; ".join(f"{k}: {v:.3g}" for k, v in before.items()) + ")", "rms_before": before}
         return res
-    if vec.has_tc and not np.all(np.diff(np.cumsum(np.exp(fit.x[len(vec.s_paths):len(vec.s_paths) + vec.nk]))) > 0):
-        # an increment of F_d underflowed to nothing: a flat segment the data do not support
-        res.refinement = {"done": False, "reason": "the refined transition curve has a flat segment (an increment "
-                          "went to zero): kept the Markov and maximum-likelihood estimates", "rms_before": before}
+    # δ of eq. (7) has a finite range here (0.05–5): an S(v) whose shape the simulation pushed
+    # to an end of it has no interior optimum — a refinement that trades the Markov levels for a
+    # misfit elsewhere (a transition the model's curve cannot follow; a GMS contact's F_s 1.40 →
+    # 1.13 N·m, 160 of the levels' σ, with δ 0.9 → 5), not an estimate with a σ
+    span = hi - lo
+    pinned = [vec.paths()[i] for i in range(len(vec.s_paths)) if np.isfinite(span[i])
+              and min(fit.x[i] - lo[i], hi[i] - fit.x[i]) < PINNED * span[i]]
+    if pinned:
+        res.refinement = {"done": False, "reason": f"the refinement drove {', '.join(pinned)} to the end of its range: "
+                          "kept the Markov and maximum-likelihood estimates", "rms_before": before}
         return res
+    if vec.has_tc:
+        with np.errstate(over="ignore", invalid="ignore"):
+            F_refined = np.cumsum(np.exp(fit.x[len(vec.s_paths):len(vec.s_paths) + vec.nk]))
+        if not np.all(np.isfinite(F_refined)):
+            res.refinement = {"done": False, "reason": "the refined transition curve ran off to an infinite force: "
+                              "kept the Markov and maximum-likelihood estimates", "rms_before": before}
+            return res
+        if not np.all(np.diff(F_refined) > 0):
+            # an increment of F_d underflowed to nothing: a flat segment the data do not support
+            res.refinement = {"done": False, "reason": "the refined transition curve has a flat segment (an increment "
+                              "went to zero): kept the Markov and maximum-likelihood estimates", "rms_before": before}
+            return res
     if vec.has_tc:
         top = float(vec.unpack(fit.x).transition_curve.F[-1])
         if top < REFINED_TOP_MIN * res.params.transition_curve.F[-1]:
@@ -414,7 +435,10 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     ns = len(vec.s_paths)
     for i, path in enumerate(paths[:ns]):
         unc[path] = float(sd[i])
-    if vec.sigma1_start is not None:
+    # σ1 counts as estimated only where the residuals move with it and it ended inside its
+    # range: driven to a bound (13 decades down, a damping that no longer acts) its column is
+    # zero and its σ would read 0 — not determined; ``refine_fit`` then holds it
+    if vec.sigma1_start is not None and seen[-1] and not fit.active_mask[-1]:
         unc["sigma1"] = float(p.sigma1 * sd[-1])  # d σ1 = σ1 · d log σ1
         res.held.pop("sigma1", None)
     if vec.nk:

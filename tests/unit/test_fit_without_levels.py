@@ -193,6 +193,27 @@ def test_a_fit_at_the_noise_floor_is_not_said_to_be_off():
     assert not [n for n in d.notes if "is what is off" in n], d.text()
 
 
+def test_measured_friction_logged_as_a_torque_is_pointed_out(crank_fit):
+    # the crank's friction column relabelled ``torque``: read as the applied force, friction is
+    # taken from it by eq. (8) with the file's inertia, but the data carry no I·ẍ at all — the
+    # report says the column looks like measured friction and how to name it
+    from leuven_friction.identify.diagnose import diagnose
+
+    df, _ = crank_recording(1, duration=8.0, rate=200.0)
+    rec = load_recording(df.rename(columns={"friction [N]": "torque [N]"}).to_csv(index=False).encode(), name="t.csv")
+    assert rec.friction is None and rec.force is not None
+    _, res = crank_fit
+    d = diagnose(rec, res.params.replace(inertia=20.0))
+    hint = [n for n in d.notes if "shows almost no inertial term" in n]
+    assert hint and "--columns friction=<column>" in hint[0], d.text()
+    # and not where the force column is an applied force: the same crank, its force I·ẍ + F
+    a = np.gradient(np.gradient(rec.position, rec.time), rec.time)
+    applied = df.assign(**{"friction [N]": df["friction [N]"] + 20.0 * a}).rename(columns={"friction [N]": "force [N]"})
+    rec2 = load_recording(applied.to_csv(index=False).encode(), name="f.csv")
+    d2 = diagnose(rec2, res.params.replace(inertia=20.0))
+    assert not [n for n in d2.notes if "shows almost no inertial term" in n], d2.text()
+
+
 def test_an_estimated_sigma1_is_printed_with_its_sd(crank_fit):
     from leuven_friction.identify.fit import fit_report
 
