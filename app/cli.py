@@ -27,6 +27,26 @@ def _params(path: str | None, model: str | None):
     return as_model(p, model) if model else p
 
 
+def say_if_compiling(out=sys.stderr) -> bool:
+    """Say so where the simulator's kernels have no compiled cache yet: numba compiles them on
+    their first use on a machine (``cache=True`` keeps them), and that run takes 15–30 s more.
+    Looked up without importing numba (the command line starts light)."""
+    import importlib.util
+    import os
+    from pathlib import Path
+
+    spec = importlib.util.find_spec("leuven_friction.model.kernels")
+    if spec is None or not spec.origin:
+        return False
+    src = Path(spec.origin)
+    # numba's cache: beside the source, else NUMBA_CACHE_DIR, else the user's cache directory
+    places = [src.parent / "__pycache__", Path(os.environ.get("NUMBA_CACHE_DIR") or Path.home() / ".cache" / "numba")]
+    if any(any(d.rglob(f"{src.stem}.*.nbi")) for d in places if d.is_dir()):
+        return False
+    print("note: compiling the simulator's kernels for this machine (the first run only: 15–30 s more)", file=out)
+    return True
+
+
 def _recording(arg: str) -> str:
     """A recording argument: ``sample:NAME`` names a recording shipped with the package."""
     from ..sample_data import resolve
@@ -83,6 +103,7 @@ def cmd_simulate(args) -> int:
     params = _params(args.params, args.model)
     if args.experiment and args.smooth_path:
         raise UserError("--smooth-path: only with --input (an experiment's motion is not logged)")
+    say_if_compiling()
     if args.experiment:
         if args.experiment not in EXPERIMENTS:
             raise UserError(f"--experiment: unknown {args.experiment!r}; known: {', '.join(EXPERIMENTS)}")
@@ -193,6 +214,7 @@ def cmd_diagnose(args) -> int:
     outputs = Outputs({"--json": args.json, "--html": args.html, "--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
     rec = load_recording(_recording(args.data), columns=cols, require=("time", "position"))
+    say_if_compiling()
     if args.params:
         params = _params(args.params, None)
     else:
@@ -247,6 +269,8 @@ def cmd_fit(args) -> int:
     n = _positive_n(args.n)  # refused before any file is read
     outputs = Outputs({"--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
+    if not args.no_refine:
+        say_if_compiling()  # the refinement simulates
     base = _params(args.params, None) if args.params else None  # None: the fit says its held values are the paper's
     overrides = {}
     for item in args.threshold or []:

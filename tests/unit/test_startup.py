@@ -35,3 +35,29 @@ def test_model_package_loads_its_names_on_first_use():
             "m.simulate_displacement; print(a, 'numba' in sys.modules)")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.stdout.split() == ["False", "True"]
+
+
+def test_a_first_run_says_the_kernels_are_being_compiled(tmp_path, monkeypatch):
+    # numba compiles the kernels on their first use on a machine and caches them: a command says
+    # so where no cache is found (that run takes 15–30 s more), and not once one is there
+    import importlib.util
+    import io
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from leuven_friction.app.cli import say_if_compiling
+    from leuven_friction.model import default_params, simulate_displacement
+
+    simulate_displacement(default_params(), np.arange(3) * 1e-3, np.zeros(3))  # the real cache exists now
+    assert not say_if_compiling(io.StringIO())
+    src = tmp_path / "pkg" / "kernels.py"
+    src.parent.mkdir()
+    src.write_text("")
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name: SimpleNamespace(origin=str(src)))
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
+    said = io.StringIO()
+    assert say_if_compiling(said) and "compiling the simulator's kernels" in said.getvalue()
+    (src.parent / "__pycache__").mkdir()
+    (src.parent / "__pycache__" / "kernels.run_force-666.py311.nbi").write_text("")
+    assert not say_if_compiling(io.StringIO())
