@@ -2448,7 +2448,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         if wf.entries:
             st["params"] = dict(wf.entries[-1]["params"])
         step_preds.append(wf.pred)
-    steps[1]["label"] = f"alternative: level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
+    # the alternative's level scales the whole friction beside the free steady curve; the model
+    # written refits the S(v) levels themselves (its note below): two different factors
+    steps[1]["label"] = f"alternative (free steady curve): level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
     if final_reid is not None:
         cmp_.notes.append(f"S(v) identified anew for the model written from the steady sliding ({final_reid.levels} speed "
                           f"levels, the level and the friction effects divided out; the Markov estimator, holding what "
@@ -2471,7 +2473,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                     if abs(abs(math.log(max(s1_ratio, 1e-300))) - math.log(SIGMA1_REFIT_MAX)) < 0.01 else "")
         n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further)"
                    if min(abs(math.log(final_base.n / b)) for b in N_REFIT) < 0.01 else "")
-        cmp_.notes.append(f"the model written (every step) refits, besides the level, the stiffness and the effects: "
+        cmp_.notes.append(f"the model written (every step; no free steady curve) refits, besides the level, the "
+                          f"stiffness and the effects: "
                           f"n {params.n:.3g} → {final_base.n:.3g}{n_bound}, "
                           f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}"
                           f"{s1_bound}, "
