@@ -431,11 +431,15 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
     longest = averaging_limit(m.t, m.compared.path, m.min_excursion)
     L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
     est = inertia_from_force(f, vel, m.t, L0, m.v_rest)
+    friction_named_force = ("; a column of measured friction read as the applied force shows none: if it is one, "
+                            "name it friction (or --columns friction=<column>)")
     if est is None:
         return None, ("not read: the force regressed on the acceleration in steady sliding gives no consistent "
-                      "positive inertia (too little steady sliding, or two windows disagreeing)")
+                      "positive inertia (too little steady sliding, two windows disagreeing, or no inertial term"
+                      + friction_named_force + ")")
     if not est.usable:
-        return est, f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to use (σ over a quarter of the value)"
+        return est, (f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to use (σ over a quarter of the value"
+                     + (friction_named_force if abs(est.value) < 2.0 * est.stderr else "") + ")")
     return est, (f"read as {est.value:.4g} ± {est.stderr:.2g} (the force regressed on the mean acceleration over "
                  f"{8 * L0 + 1} and {32 * L0 + 1} samples)")
 
