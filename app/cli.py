@@ -226,7 +226,7 @@ def cmd_diagnose(args) -> int:
     try:
         from ..identify.diagnose import Settings
 
-        chosen = {"space": args.space, "must_settle": args.require_settling}
+        chosen = {"space": args.space, "must_settle": args.require_settling, "refit_base": args.refit_base}
         if args.softening_thresholds is not None:
             chosen["softening_thresholds"] = args.softening_thresholds
         d = diagnose(rec, params, progress=_progress, settings=Settings(**chosen))
@@ -245,7 +245,9 @@ def cmd_diagnose(args) -> int:
         if args.out:
             outputs.write_text(args.out, params_to_yaml(d.params_after.validate()))
     if args.out:
-        print(f"model {'with ' + ', '.join(d.effects) if d.effects else '(unchanged)'} -> {args.out}")
+        what = ("with " + ", ".join(d.effects) if d.effects else
+                "(its base refitted alone)" if d.params_after is not d.params_before else "(unchanged)")
+        print(f"model {what} -> {args.out}")
     return 0
 
 
@@ -448,6 +450,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "saturation scale at a bound, e.g. a softening's n_c), since a trend along the session's schedule "
                         "would look the same: report it as seen, not named (the default). --no-require-settling "
                         "names it, with that caveat")
+    d.add_argument("--refit-base", action="store_true",
+                   help="where nothing is named, write (--out) the base refitted alone by output error — the level, "
+                        "the presliding stiffness, n, σ1, the S(v) levels and the transition curve's segments — "
+                        "instead of the file as given")
     d.add_argument("--softening-thresholds", type=int, metavar="K",
                    help="back-travels tried as what counts as a softening's reversal: the smallest significant "
                         "one × 1, 2, 4 … (K of them while 6 reversals remain; each screened, the best two fitted, "

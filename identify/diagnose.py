@@ -106,6 +106,9 @@ class Settings:
     # 1 tries min_excursion alone. All are screened and the SOFTENING_FITTED best fitted, so six
     # cost the speed benchmark's robot joint about 4 s over one (README: speed)
     softening_thresholds: int = 6
+    # nothing named: write the base refitted alone (the model written's refit of the level, the
+    # stiffness, n, σ1, S(v) and the curve's segments) instead of the file as given
+    refit_base: bool = False
     candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
 
 
@@ -2503,7 +2506,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     regimes = {}
     # what the file written predicts: nothing named, it is the model as given (the base refitted
     # alone is a step of the report, not the file: the diagnosis adds effects, `fit` makes bases)
-    after = final.pred if named else pred_given_c
+    rebased = not named and s.refit_base
+    after = final.pred if (named or rebased) else pred_given_c
     rms_alt = _rms((meas - null.pred)[allm])
     if not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0 and rms0 > BASE_OFF_NOISE * cmp_.noise:
         # (a model within two noise floors is at the noise level, whatever a refit gains there)
@@ -2513,15 +2517,18 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"the base, not a missing effect, is what is off: "
                           + ("the fit of this recording holds or misses what the refit moves (see its held "
                              "parameters, and the refit's values above)" if fitted_here else
-                             "fit it to this recording (`leuven-friction fit`) or give --params closer to it"))
+                             "fit it to this recording (`leuven-friction fit`) or give --params closer to it")
+                          + ("; the base refitted alone as the model written is what is written (--refit-base)"
+                             if rebased else f"; `diagnose --refit-base --out` writes the base refitted alone as the "
+                             f"model written (it leaves {_rms((meas - final.pred)[allm]):.4g})"))
     for k, m in regimes_m.items():
         m = m & allm
         if m.any():
             regimes[k] = {"n": int(m.sum()), "rms_before": _rms((meas - pred_given_c)[m]),
                           "rms_base_refit": _rms((meas - null.pred)[m]), "rms_after": _rms((meas - after)[m]),
                           "noise": cmp_.noise_on(m)}
-    new_params = params  # nothing named: the model stays as it was
-    if named:
+    new_params = params  # nothing named: the model stays as it was (unless ``refit_base``)
+    if named or rebased:
         # S(v) and the transition curve are rescaled: their old uncertainties no longer apply
         unc = {k: v for k, v in params.uncertainty.items()
                if not (k.startswith("stribeck.") or k.startswith("transition_curve") or k in ("n", "sigma1")
@@ -2544,7 +2551,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                                if not any(k.startswith(f"stribeck.{sd}.") for sd in final_reid.sides)},
                             **final_reid.held}
         held = [e["name"] for e in final.entries if e["name"] not in named]
-        prov["diagnosis"] = (f"{', '.join(named)} added (blocked cross-validation)"
+        prov["diagnosis"] = ((f"{', '.join(named)} added (blocked cross-validation)" if named else
+                              "nothing named; the base refitted alone (--refit-base)")
                              + (f", {', '.join(held)} held with them" if held else "") + f"; level ×{final.g:.4g}, "
                              f"presliding stiffness ×{final.k0:.4g}, n {params.n:.3g} → {final_base.n:.3g}, "
                              f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, "

@@ -181,6 +181,29 @@ def test_a_diagnosis_of_its_own_fit_says_the_fit_is_what_misses_not_to_fit_again
     assert off and "the fit of this recording" in off[0] and "leuven-friction fit" not in off[0], d.text()
 
 
+def test_the_base_refitted_alone_is_written_when_asked_and_closes_the_loop(fits):
+    # nothing named and the base off: --refit-base writes the base the diagnosis refitted alone;
+    # diagnosing again from that file, the model as given leaves what the first run said it would
+    from leuven_friction.identify.diagnose import Settings, diagnose
+    from leuven_friction.identify.paramfile import load_params, params_to_yaml
+
+    t, x, f = stick_slip(3)
+    rec = load_recording(_csv([t, x, f], ["time [s]", "position [m]", "friction [N]"]), name="si.csv")
+    given = diagnose(rec, fits[0].params)
+    assert "--refit-base" in next(n for n in given.notes if "is what is off" in n)
+    d = diagnose(rec, fits[0].params, settings=Settings(refit_base=True))
+    assert d.effects == [] and d.params_after is not d.params_before
+    assert d.rms_after < 0.9 * d.rms_before, d.text()
+    assert d.params_after.provenance["diagnosis"].startswith("nothing named; the base refitted alone")
+    import pathlib
+    import tempfile
+
+    path = pathlib.Path(tempfile.mkdtemp()) / "rebased.yaml"
+    path.write_text(params_to_yaml(d.params_after.validate()))
+    again = diagnose(rec, load_params(str(path)))
+    assert again.rms_before == pytest.approx(d.rms_after, rel=0.02), (again.rms_before, d.rms_after)
+
+
 def test_a_fit_at_the_noise_floor_is_not_said_to_be_off():
     # a short crank log at 200 Hz, clean: its fit leaves a gap within the noise floor; that a
     # refit of the level and stiffness leaves less there is noise, not a base that is off
