@@ -2281,7 +2281,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # a drift in time is then a slope of S(v) as well: the base's S(v) refit and the free
         # steady curve the decision compares beside take part of it up before time_drift is tried
         cmp_.notes.append(f"the session slides at speeds in order of time (|Spearman ρ| {order.rho:.2f} over "
-                          f"{order.count} holds of steady sliding): a slow change in time and the shape of "
+                          f"{order.count} holds of steady sliding, those faster than |v| = {cmp_.v_rest:.3g}: slower "
+                          f"runs are not told from presliding here): a slow change in time and the shape of "
                           f"S(v) are confounded here, and part of a drift is taken as S(v). To tell: visit the "
                           f"speed levels in a shuffled order, or repeat the first ones at the session's end")
     if "cyclic_softening" in s.candidates and abs(strokes.rho) >= SPEED_ORDER_RHO:
