@@ -416,6 +416,11 @@ def motion_reading(rec: Recording) -> MotionReading:
     return MotionReading(t, x, dt, cp, vel, v_noise, v_rest, 4.0 * max(cp.sd, cp.step), tacho)
 
 
+# what to do where a column read as the applied force carries no I·ẍ (measured friction under a force's name)
+NAME_IT_FRICTION = ("if it is measured friction, name it so (friction, friction_torque) or pass "
+                    "--columns friction=<column>")
+
+
 def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
     """The inertia of eq. (8) that a recording of applied force and position says by itself
     (``inertia_from_force`` at the shortest averaging, no inertia given), and in words why
@@ -434,8 +439,7 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
     longest = averaging_limit(m.t, m.compared.path, m.min_excursion)
     L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
     est = inertia_from_force(f, vel, m.t, L0, m.v_rest)
-    friction_named_force = ("; a column of measured friction read as the applied force shows none: if it is one, "
-                            "name it friction (or --columns friction=<column>)")
+    friction_named_force = f"; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}"
     if est is None:
         return None, ("not read: the force regressed on the acceleration in steady sliding gives no consistent "
                       "positive inertia (too little steady sliding, two windows disagreeing, or no inertial term"
@@ -1111,8 +1115,10 @@ class Engine:
             if k == key and p == self.p:
                 self._sims.append(self._sims.pop(i))
                 return sim
-        sim = simulate_displacement(self.p, self.c.time, self.c.path, stiffness_scale=ss,
-                                    steady=self._steady()).friction_force
+        sa = self._steady()
+        # along the shared S(v)'s own copies of the path: it then knows them by identity, not by
+        # comparing two records sample by sample on every simulation
+        sim = simulate_displacement(self.p, sa.time, sa.position, stiffness_scale=ss, steady=sa).friction_force
         self._sims = self._sims[-(SIM_CACHE - 1):] + [(self.p, key, sim)]
         self.sims += 1
         return sim
@@ -1219,6 +1225,12 @@ SIGMA1_REFIT_MAX = 100.0  # σ1 refits within this factor of the file's
 N_REFIT = (1.0, 40.0)  # n of eq. (5) refits within this range (at 40 the transition is all but a corner)
 INERTIA_ABSENT = 0.05  # friction following the acceleration as if I were under this share of the I it was taken with
 BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
+def _at_range_end(x: float, ends) -> bool:
+    """Whether a value a refit ranges on a log scale ended at one of its range's ``ends``."""
+    ends = [e for e in ends if e > 0]
+    return x > 0 and bool(ends) and min(abs(math.log(x / e)) for e in ends) < 0.01
+
+
 REFIT_NFEV_FROM = 20  # least-squares steps of a refit that starts from another's solution (each step simulates)
 
 
@@ -2476,11 +2488,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                   for sd in ("positive", "negative") for k in ("Fs", "Fc")]
         # σ1 refits within a factor SIGMA1_REFIT_MAX of the file's (``refit_transition``): at that bound the
         # record wants it further, and the value written is a bound, not an estimate
-        s1_ratio = final_base.sigma1 / max(params.sigma1, 1e-300)
+        s1_ends = (params.sigma1 / SIGMA1_REFIT_MAX, params.sigma1 * SIGMA1_REFIT_MAX)
         s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's: the record pushes it further)"
-                    if abs(abs(math.log(max(s1_ratio, 1e-300))) - math.log(SIGMA1_REFIT_MAX)) < 0.01 else "")
+                    if _at_range_end(final_base.sigma1, s1_ends) else "")
         n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further)"
-                   if min(abs(math.log(final_base.n / b)) for b in N_REFIT) < 0.01 else "")
+                   if _at_range_end(final_base.n, N_REFIT) else "")
         cmp_.notes.append(f"the model written (every step; no free steady curve) refits, besides the level, the "
                           f"stiffness and the effects: "
                           f"n {params.n:.3g} → {final_base.n:.3g}{n_bound}, "
@@ -2501,8 +2513,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         if cmp_.inertia + d_i < INERTIA_ABSENT * cmp_.inertia:
             # a measured friction logged under a force's name (``torque``) carries no I·ẍ at all
             cmp_.notes.append(f"that is under {INERTIA_ABSENT:.0%} of the inertia the friction was taken with: the "
-                              f"column read as the applied force shows almost no inertial term. If it is measured "
-                              f"friction, name it so (friction, friction_torque) or pass --columns friction=<column>; "
+                              f"column read as the applied force shows almost no inertial term: {NAME_IT_FRICTION}; "
                               f"if it is the applied force, give this machine's inertia (--params)")
     regimes = {}
     # what the file written predicts: nothing named, it is the model as given (the base refitted

@@ -127,8 +127,7 @@ class Context:
         factor also depends on theirs."""
         assert not _follows(effect), effect.name
         return _kept(self._factors, (effect.factor, tuple(sorted(values.items()))), FACTORS_KEPT, self.time.size,
-                     lambda: np.broadcast_to(np.asarray(effect.factor(values, self), dtype=np.float64),
-                                             self.time.shape))
+                     lambda: effect.along(values, self))
 
     def log_speed(self, v_floor: float, v_ref: float, effect: str) -> np.ndarray:
         """ℓ = ln(max(|v|, v_floor)/v_ref) along the context's velocity, kept for the last
@@ -186,9 +185,11 @@ class Effect:
         """The factor along the context's motion (read-only). One that does not follow the
         friction effects is kept by the context for its values: a finite-difference Jacobian
         moves one parameter of one effect at a time, and every other effect's factor repeats."""
-        if _follows(self):
-            return np.broadcast_to(np.asarray(self.factor(values, ctx), dtype=np.float64), ctx.time.shape)
-        return ctx.factor_of(self, values)
+        return self.along(values, ctx) if _follows(self) else ctx.factor_of(self, values)
+
+    def along(self, values: Mapping[str, float], ctx: Context) -> np.ndarray:
+        """The factor made anew along the context's motion (read-only; one number broadcast)."""
+        return np.broadcast_to(np.asarray(self.factor(values, ctx), dtype=np.float64), ctx.time.shape)
 
     def without(self, values: Mapping[str, float]) -> dict:
         """``values`` with the effect's amplitudes at ``neutral``: its shape kept, its factor 1."""
