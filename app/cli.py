@@ -201,9 +201,24 @@ def _progress(frac, msg):
     print(f"\r[{bar:20s}] {int(100 * frac):3d}% {msg:60s}", end="", file=sys.stderr, flush=True)
 
 
+def _threshold_items(items) -> dict:
+    """--threshold NAME=VALUE, repeated, as {name: number}; each item refused in one line
+    unless it reads so (which names are settable is the command's to check)."""
+    out = {}
+    for item in items or []:
+        name, sep, value = item.partition("=")
+        try:
+            out[name.strip()] = float(value)
+        except ValueError:
+            raise UserError(f"--threshold {item!r}: expected name=number") from None
+        if not sep:
+            raise UserError(f"--threshold {item!r}: expected name=number")
+    return out
+
+
 def cmd_diagnose(args) -> int:
     from ..identify.data import load_recording, parse_column_mapping
-    from ..identify.diagnose import diagnose
+    from ..identify.diagnose import diagnose, reading_overrides
     from ..identify.fit import fit_recordings
     from ..identify.paramfile import params_to_yaml
     from .outputs import Outputs
@@ -211,6 +226,7 @@ def cmd_diagnose(args) -> int:
     if args.softening_thresholds is not None and args.softening_thresholds < 1:
         raise UserError(f"--softening-thresholds {args.softening_thresholds}: must be at least 1 (1 tries the "
                         f"smallest significant back-travel alone)")
+    reading = reading_overrides(_threshold_items(args.threshold))  # a bad setting is refused before any file is read
     outputs = Outputs({"--json": args.json, "--html": args.html, "--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
     rec = load_recording(_recording(args.data), columns=cols, require=("time", "position"))
@@ -226,7 +242,8 @@ def cmd_diagnose(args) -> int:
     try:
         from ..identify.diagnose import Settings
 
-        chosen = {"space": args.space, "must_settle": args.require_settling, "refit_base": args.refit_base}
+        chosen = {"space": args.space, "must_settle": args.require_settling, "refit_base": args.refit_base,
+                  "reading": tuple(reading.items())}
         if args.softening_thresholds is not None:
             chosen["softening_thresholds"] = args.softening_thresholds
         d = diagnose(rec, params, progress=_progress, settings=Settings(**chosen))
@@ -274,15 +291,7 @@ def cmd_fit(args) -> int:
     if not args.no_refine:
         say_if_compiling()  # the refinement simulates
     base = _params(args.params, None) if args.params else None  # None: the fit says its held values are the paper's
-    overrides = {}
-    for item in args.threshold or []:
-        name, sep, value = item.partition("=")
-        try:
-            overrides[name.strip()] = float(value)
-        except ValueError:
-            raise UserError(f"--threshold {item!r}: expected name=number") from None
-        if not sep:
-            raise UserError(f"--threshold {item!r}: expected name=number")
+    overrides = _threshold_items(args.threshold)
     from ..identify.segment import Thresholds
 
     Thresholds.checked(overrides)  # a bad setting is refused before any file is read
@@ -459,6 +468,12 @@ def build_parser() -> argparse.ArgumentParser:
                         "one × 1, 2, 4 … (K of them while 6 reversals remain; each screened, the best two fitted, "
                         "the one that fits best written; default 6; 1 tries the smallest alone, about a fifth "
                         "faster, and names fewer effects right on the hidden-effect suite)")
+    d.add_argument("--threshold", action="append", metavar="NAME=VALUE",
+                   help="set a threshold of the motion reading instead of its derivation from the recording (SI "
+                        "units; repeatable; the report's first note prints them all, marking those set): window "
+                        "(the smoothing window, odd, samples: the velocity's noise and so the rest speed follow "
+                        "it), v_rest (|v| below it counts as presliding), min_excursion (the back-travel of a "
+                        "significant reversal)")
     d.set_defaults(func=cmd_diagnose)
 
     sm = sub.add_parser("samples", help="list the sample recordings shipped with the package, or copy them out")

@@ -109,6 +109,9 @@ class Settings:
     # nothing named: write the base refitted alone (the model written's refit of the level, the
     # stiffness, n, σ1, S(v) and the curve's segments) instead of the file as given
     refit_base: bool = False
+    # the user's settings of the motion reading's thresholds, as (name, value) pairs
+    # (``reading_overrides``; `diagnose --threshold`): the rest derived from the recording
+    reading: tuple = ()
     candidates: tuple = tuple(n for n in EFFECTS if EFFECTS[n].acts_on == "friction" or n == "cyclic_softening")
 
 
@@ -315,12 +318,12 @@ class ComparedPath:
     h: float
 
 
-def compared_path(x: np.ndarray, dt: float) -> ComparedPath:
+def compared_path(x: np.ndarray, dt: float, window: int | None = None) -> ComparedPath:
     """``smoothed_path`` with its window and play width derived from the position's own noise
     and quantisation (``position_noise``): the path the diagnosis compares along, and the one
-    ``simulate --smooth-path`` drives."""
+    ``simulate --smooth-path`` drives. ``window``: the user's, instead of ``smoothing_window``'s."""
     sd, q = position_noise(x)
-    w = smoothing_window(x, dt, sd)
+    w = smoothing_window(x, dt, sd) if window is None else int(window)
     h = 2.0 * max(sd, q / 2.0)
     # a sensor with Gaussian noise: the play's lag removed (``centred_play``). An encoder: the
     # play's own output, as before — a reading there changes only once the contact has crossed
@@ -392,20 +395,65 @@ class MotionReading:
     v_rest: float
     min_excursion: float
     tachometer: tuple | None
+    set_by_user: tuple = ()  # the thresholds the user set (``reading_overrides``), not derived
+
+    def note(self) -> str:
+        """The reading in one line, each threshold marked where the user set it."""
+        cp = self.compared
+        mark = lambda k: " (set)" if k in self.set_by_user else ""  # noqa: E731
+        return (f"position noise {cp.sd:.3g} ({f'encoder step {cp.step:.3g}' if cp.step > 0 else 'no encoder step'}); "
+                f"path smoothed over {cp.window} samples{mark('window')} and wiggles below {2 * cp.h:.3g} removed; "
+                f"|v| < {self.v_rest:.3g}{mark('v_rest')} counts as presliding; a reversal counts from "
+                f"{self.min_excursion:.3g}{mark('min_excursion')} of back-travel (settable: `diagnose --threshold "
+                f"NAME=VALUE`, {', '.join(READING_SETTABLE)})")
 
 
-def motion_reading(rec: Recording) -> MotionReading:
+# the thresholds of the motion reading a user may set instead of their derivation from the
+# recording: the smoothing window (samples; it sets the velocity's noise, so the rest speed
+# follows it unless set too), the rest speed and the back-travel of a significant reversal
+# (SI, in the units the recording is read into)
+READING_SETTABLE = ("window", "v_rest", "min_excursion")
+
+
+def reading_overrides(values: dict | None) -> dict:
+    """The user's settings of the motion reading as numbers, each refused in one line unless
+    it is settable (READING_SETTABLE) with a finite value in its range: window an odd whole
+    number of samples ≥ 5, v_rest and min_excursion > 0."""
+    out = {}
+    for k, v in (values or {}).items():
+        if k not in READING_SETTABLE:
+            raise DataError(f"--threshold {k}: not a threshold of the diagnosis's reading "
+                            f"(settable: {', '.join(READING_SETTABLE)})")
+        v = float(v)
+        if not math.isfinite(v):
+            raise DataError(f"--threshold {k}={v}: must be finite")
+        if k == "window":
+            if v != int(v) or v < 5 or int(v) % 2 == 0:
+                raise DataError(f"--threshold window={v:g}: must be an odd whole number of samples, at least 5")
+            v = int(v)
+        elif v <= 0:
+            raise DataError(f"--threshold {k}={v:g}: must be > 0")
+        out[k] = v
+    return out
+
+
+def motion_reading(rec: Recording, overrides: dict | None = None) -> MotionReading:
+    """The motion as the diagnosis reads it, every threshold derived from the recording
+    unless ``overrides`` (``reading_overrides``) sets it."""
+    user = reading_overrides(overrides)
     t = np.asarray(rec.time, dtype=np.float64)
     x = np.asarray(rec.position, dtype=np.float64)
     if len(t) < 50:
         raise DataError(f"{rec.source}: diagnosis needs at least 50 samples, got {len(t)}")
+    if user.get("window", 0) > len(t) // 2:
+        raise DataError(f"--threshold window={user['window']}: longer than half of {rec.source}'s {len(t)} samples")
     dt = float(np.median(np.diff(t)))
-    cp = compared_path(x, dt)
+    cp = compared_path(x, dt, user.get("window"))
     # the sampling may change within a record (parts logged at different rates, gaps): the
     # slope is taken against the actual times, as the fit does
     vel = local_slope(t, x, cp.window, uniform=bool(np.ptp(np.diff(t)) <= 0.01 * dt))
     v_noise = cp.sd * math.sqrt(12.0) / (cp.window**1.5 * dt)
-    v_rest = 3.0 * max(v_noise, (cp.step / (cp.window * dt)) if cp.step else 0.0)
+    v_rest = user.get("v_rest", 3.0 * max(v_noise, (cp.step / (cp.window * dt)) if cp.step else 0.0))
     tacho = None
     if rec.velocity is not None:
         vt = np.asarray(rec.velocity, dtype=np.float64)
@@ -413,7 +461,8 @@ def motion_reading(rec: Recording) -> MotionReading:
         vt_noise = _mad_sd(np.diff(vt)) / math.sqrt(2)
         if vt_noise < v_noise:
             tacho = (vt, vt_noise)
-    return MotionReading(t, x, dt, cp, vel, v_noise, v_rest, 4.0 * max(cp.sd, cp.step), tacho)
+    return MotionReading(t, x, dt, cp, vel, v_noise, v_rest, user.get("min_excursion", 4.0 * max(cp.sd, cp.step)),
+                         tacho, tuple(user))
 
 
 # what to do where a column read as the applied force carries no I·ẍ (measured friction under a force's name)
@@ -451,17 +500,18 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
                  f"{8 * L0 + 1} and {32 * L0 + 1} samples)")
 
 
-def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction") -> Comparison:
+def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction",
+                  reading: dict | None = None) -> Comparison:
     """Where to compare: in friction when the recording has a friction column or an applied
     force (friction from eq. (8), averaged), in position (``space="position"``) only for an
-    applied force."""
+    applied force; ``reading``: the user's settings of the motion reading (``reading_overrides``)."""
     if rec.position is None:
         raise DataError(f"{rec.source}: diagnosis needs a position column")
-    m = motion_reading(rec)
+    m = motion_reading(rec, reading)
     t, x, dt, vel, v_noise, v_rest, min_exc = m.t, m.x, m.dt, m.velocity, m.v_noise, m.v_rest, m.min_excursion
     cp = m.compared
-    sdx, q, w, h, path = cp.sd, cp.step, cp.window, cp.h, cp.path
-    notes = [f"position noise {sdx:.3g} ({f'encoder step {q:.3g}' if q > 0 else 'no encoder step'}); path smoothed over {w} samples and wiggles below {2 * h:.3g} removed; |v| < {v_rest:.3g} counts as presliding"]
+    sdx, w, path = cp.sd, cp.window, cp.path
+    notes = [m.note()]
     if rec.friction is not None:
         meas = np.asarray(rec.friction, dtype=np.float64)
         cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, rec.force, 0.0, sdx, w, min_exc, v_rest,
@@ -1792,7 +1842,7 @@ class Diagnosis:
             "candidates": self.candidates, "notes": list(self.notes),
             "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
                          "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr,
-                         "must_settle": self.settings.must_settle},
+                         "must_settle": self.settings.must_settle, "reading": dict(self.settings.reading)},
         }
 
     def text(self) -> str:
@@ -2155,7 +2205,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     s = settings or Settings()
     say = progress or (lambda frac, msg: None)
     say(0.01, "choosing where to compare")
-    cmp_ = comparison_of(rec, params, s.space)
+    cmp_ = comparison_of(rec, params, s.space, dict(s.reading))
     base_params = params.replace(effects=())
     cmp_.z_presliding = presliding_range(params)
     stroke = median_stroke(cmp_)

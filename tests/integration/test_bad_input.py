@@ -294,3 +294,18 @@ def test_nothing_to_fit_names_the_file(tmp_path, capsys):
     assert rc == 2 and len(errors) == 1 and f"{tmp_path / 'short.csv'}: nothing to fit" in errors[0], err
     assert "Traceback" not in err
     assert not (tmp_path / "p.yaml").exists()
+
+
+@pytest.mark.parametrize("setting, says", [
+    ("window=4", "--threshold window=4: must be an odd whole number of samples, at least 5"),
+    ("window=6", "--threshold window=6: must be an odd whole number of samples, at least 5"),
+    ("v_rest=-0.1", "--threshold v_rest=-0.1: must be > 0"),
+    ("min_excursion=nan", "--threshold min_excursion=nan: must be finite"),
+    ("v_floor=1", "--threshold v_floor: not a threshold of the diagnosis's reading (settable: window, v_rest, "
+                  "min_excursion)"),
+    ("window", "--threshold 'window': expected name=number"),
+])
+def test_a_bad_reading_threshold_is_refused_before_the_work(tmp_path, capsys, setting, says):
+    rc, _, err = run(capsys, "diagnose", SAMPLE, "--threshold", setting, "--json", tmp_path / "r.json")
+    assert rc == 2 and one_line(err) == f"error: {says}"
+    assert os.listdir(tmp_path) == []

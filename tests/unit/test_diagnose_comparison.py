@@ -719,3 +719,49 @@ def test_observed_presliding_range_reads_the_crossing_after_each_turn_of_a_maxwe
                    x[: 2 * int(2 * amp / step)], np.gradient(x, t)[: 2 * int(2 * amp / step)], None, None, noise, 0.0,
                    5, 0.05 * z_pres, 1e-9)
     assert observed_presliding_range(c) is None
+
+
+def _coarse_encoder_sweep(tmp_path):
+    """A joint swept at ±0.002, ±0.02 and ±0.3 rad/s (4 s each, rests between) logged at
+    500 Hz through an encoder of 4.8·10⁻⁵ rad, written as a real CSV: the slowest level moves
+    one step every 12 samples, under the rest speed of the shortest window."""
+    from leuven_friction.identify.data import load_recording
+
+    dt, q = 2e-3, 4.8e-5
+    v = np.concatenate([np.r_[np.zeros(500), np.full(2000, s * lv)] for lv in (0.002, 0.02, 0.3) for s in (1, -1)]
+                       + [np.zeros(500)])
+    t = np.arange(len(v)) * dt
+    x = np.concatenate([[0.0], np.cumsum(v[1:] * dt)])  # exact: the speed is constant between samples
+    rows = ["time [s],position [rad],friction [N*m]"] + [
+        f"{ti:.4f},{q * np.floor(xi / q + 0.5):.7g},{2.0 * np.tanh(vi / 1e-3):.5g}" for ti, xi, vi in zip(t, x, v)]
+    path = tmp_path / "coarse.csv"
+    path.write_text("\n".join(rows) + "\n")
+    return load_recording(str(path)), t, v, dt, q
+
+
+def test_a_longer_window_set_by_the_user_reads_slow_sliding_a_short_one_takes_for_rest(tmp_path):
+    from leuven_friction.identify.diagnose import motion_reading
+
+    rec, t, v, dt, q = _coarse_encoder_sweep(tmp_path)
+    slow = np.abs(np.abs(v) - 0.002) < 1e-12
+    derived = motion_reading(rec)
+    assert derived.set_by_user == ()
+    # the derived window is short (the fast levels set it): the slowest level counts as rest
+    assert derived.v_rest > 3 * 0.002
+    assert np.mean(np.abs(derived.velocity[slow]) > derived.v_rest) < 0.2
+    W = 301
+    m = motion_reading(rec, {"window": W})
+    # the rest speed follows the window set: three times one encoder step per window (the
+    # step's noise over the window, q/(W^1.5·dt), is far smaller)
+    assert m.compared.window == W and m.v_rest == pytest.approx(3 * q / (W * dt), rel=0.02)
+    # away from the level's ends by a window, the slow sliding is read, at its speed
+    inner = slow & (np.convolve(slow, np.ones(2 * W + 1), "same") >= 2 * W + 1)
+    assert inner.sum() > 2000
+    assert np.all(np.abs(m.velocity[inner]) > m.v_rest)
+    assert np.allclose(np.abs(m.velocity[inner]), 0.002, rtol=0.05)
+    # and the note says which thresholds were set, beside those still derived
+    note = m.note()
+    assert f"smoothed over {W} samples (set)" in note and "counts as presliding;" in note
+    both = motion_reading(rec, {"window": W, "v_rest": 1e-3, "min_excursion": 2e-4})
+    assert both.v_rest == 1e-3 and both.min_excursion == 2e-4
+    assert "|v| < 0.001 (set)" in both.note() and "0.0002 (set) of back-travel" in both.note()
