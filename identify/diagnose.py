@@ -82,7 +82,7 @@ from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
 from .data import DataError, Recording
 from .errors import IdentificationError
-from .segment import gross_sliding_mask, local_slope, speed_levels, steady_velocity_mask
+from .segment import checked_threshold, gross_sliding_mask, local_slope, speed_levels, steady_velocity_mask
 
 
 INFORMATIVE = 0.01  # a held-out fold counts if the candidate moves its SSE by this fraction
@@ -424,16 +424,7 @@ def reading_overrides(values: dict | None) -> dict:
         if k not in READING_SETTABLE:
             raise DataError(f"--threshold {k}: not a threshold of the diagnosis's reading "
                             f"(settable: {', '.join(READING_SETTABLE)})")
-        v = float(v)
-        if not math.isfinite(v):
-            raise DataError(f"--threshold {k}={v}: must be finite")
-        if k == "window":
-            if v != int(v) or v < 5 or int(v) % 2 == 0:
-                raise DataError(f"--threshold window={v:g}: must be an odd whole number of samples, at least 5")
-            v = int(v)
-        elif v <= 0:
-            raise DataError(f"--threshold {k}={v:g}: must be > 0")
-        out[k] = v
+        out[k] = checked_threshold(k, v, "window" if k == "window" else "positive")
     return out
 
 

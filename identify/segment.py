@@ -82,6 +82,26 @@ def noise_sd(noise) -> float:
 MIN_PLATEAU_SHARE = 0.5  # a normal-load plateau holding less of the recording is not where to fit
 
 
+def checked_threshold(name: str, value, kind: str = "positive"):
+    """One threshold a user sets (``--threshold name=value``) as a number, refused in one line
+    unless finite and in its range: kind "window" an odd whole number of samples ≥ 5, "count"
+    a whole number of samples ≥ 2, "non_negative" ≥ 0, "positive" > 0."""
+    v = float(value)
+    if not np.isfinite(v):
+        raise DataError(f"--threshold {name}={v}: must be finite")
+    if kind == "window":
+        if v != int(v) or v < 5 or int(v) % 2 == 0:
+            raise DataError(f"--threshold {name}={v:g}: must be an odd whole number of samples, at least 5")
+        return int(v)
+    if kind == "count":
+        if v != int(v) or v < 2:
+            raise DataError(f"--threshold {name}={v:g}: must be a whole number of samples, at least 2")
+        return int(v)
+    if v < 0 or (v == 0 and kind == "positive"):
+        raise DataError(f"--threshold {name}={v:g}: must be {'> 0' if kind == 'positive' else '>= 0'}")
+    return v
+
+
 @dataclass
 class Thresholds:
     """Every threshold of the segmentation, derived from the recording (SI units)."""
@@ -117,20 +137,8 @@ class Thresholds:
                 what = "is measured from the recording, not a setting" if k in {f.name for f in fields(cls)} \
                     else "is not a threshold"
                 raise DataError(f"--threshold {k}: {what} (settable: {', '.join(cls.SETTABLE)})")
-            v = float(v)
-            if not np.isfinite(v):
-                raise DataError(f"--threshold {k}={v}: must be finite")
-            if k == "window":
-                if v != int(v) or v < 5 or int(v) % 2 == 0:
-                    raise DataError(f"--threshold window={v:g}: must be an odd whole number of samples, at least 5")
-                v = int(v)
-            elif k == "min_run":
-                if v != int(v) or v < 2:
-                    raise DataError(f"--threshold min_run={v:g}: must be a whole number of samples, at least 2")
-                v = int(v)
-            elif v < 0 or (v == 0 and k != "min_travel"):
-                raise DataError(f"--threshold {k}={v:g}: must be {'>= 0' if k == 'min_travel' else '> 0'}")
-            out[k] = v
+            out[k] = checked_threshold(k, v, {"window": "window", "min_run": "count",
+                                              "min_travel": "non_negative"}.get(k, "positive"))
         return out
 
     def override(self, values: dict) -> "Thresholds":
