@@ -309,3 +309,17 @@ def test_a_bad_reading_threshold_is_refused_before_the_work(tmp_path, capsys, se
     rc, _, err = run(capsys, "diagnose", SAMPLE, "--threshold", setting, "--json", tmp_path / "r.json")
     assert rc == 2 and one_line(err) == f"error: {says}"
     assert os.listdir(tmp_path) == []
+
+
+def test_a_reading_threshold_set_reaches_the_report_marked(tmp_path, capsys):
+    import json
+
+    out = tmp_path / "r.json"
+    rc, text, _ = run(capsys, "diagnose", SAMPLE, "--threshold", "v_rest=0.002", "--threshold", "min_excursion=1e-3",
+                      "--json", out)
+    assert rc == 0
+    res = json.loads(out.read_text())
+    assert res["settings"]["reading"] == {"v_rest": 0.002, "min_excursion": 0.001}
+    assert "|v| < 0.002 (set) counts as presliding" in res["notes"][0]
+    assert "0.001 (set) of back-travel" in res["notes"][0] and "samples (set)" not in res["notes"][0]
+    assert "|v| < 0.002 (set)" in text
