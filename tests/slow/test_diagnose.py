@@ -265,22 +265,27 @@ def test_a_stiffness_that_follows_the_speed_is_not_credited_to_softening():
 
 
 def test_an_effect_the_model_written_does_not_use_is_not_named():
-    # a clean linear stage (no effect imposed) on which a softening, its reversal threshold
-    # chosen among three, passes held out beside the free steady curve; the model written,
-    # refitted with n, σ1 and S(v), leaves its amplitude near zero. It must not be named, the
-    # parameter file stays as it was, and the report says why
+    # a robot joint with a load and a softening hidden, its base fitted by `fit` as a user does:
+    # a drift (none imposed) passes held out beside the free steady curve in the third round; the
+    # model written, refitted with n, σ1 and S(v), leaves it under PRESCREEN·min_gain of its own
+    # gap. It must not be named, its step goes, and the report says why. (A clean linear stage,
+    # 7010, showed the same with a softening on the numerical platform of earlier versions; on
+    # numpy 2.4 / scipy 1.17 that softening no longer passes held out there.)
     from leuven_friction.identify.diagnose import PRESCREEN, Settings
+    from leuven_friction.identify.fit import fit_recordings
     from synth.hidden import SUITE_RATE
 
-    df, truth, case = make_case("linear_stage", 7010, (), rate=SUITE_RATE["linear_stage"])
-    base = oracle_params(truth)
-    s = Settings(softening_thresholds=3)
-    d = diagnose(to_recording(df, "clean.csv"), base, settings=s)
-    assert d.effects == [] and d.params_after is base, d.text()
-    assert [c["name"] for c in d.unused] == ["cyclic_softening"], d.text()
-    assert d.unused[0]["own_gain"] < PRESCREEN * s.min_gain
-    assert "Passed, not named: cyclic_softening" in d.text()
-    assert len(d.steps) == 2  # the model as given and the alternative: no step of the effect left
+    df, truth, case = make_case("robot_joint", 3064, ("normal_load", "cyclic_softening"), rate=SUITE_RATE["robot_joint"])
+    rec = to_recording(df, f"{case.label}.csv")
+    s = Settings()
+    d = diagnose(rec, fit_recordings([rec]).params, settings=s)
+    assert [c["name"] for c in d.unused] == ["time_drift"], d.text()
+    assert "time_drift" not in d.effects and d.unused[0]["own_gain"] < PRESCREEN * s.min_gain
+    assert "Passed, not named: time_drift" in d.text()
+    # one step per effect named beside the model as given and the alternative: none for the drift
+    assert len(d.steps) == 2 + len(d.effects) and [st["name"] for st in d.steps[2:]] == d.effects
+    # what stays named is what was imposed
+    assert set(d.effects) == {"normal_load", "cyclic_softening"}, d.text()
 
 
 def _stiffness_falling_in_time(kind, seed):
@@ -341,16 +346,18 @@ def test_a_stiffness_falling_in_time_on_cycled_strokes_is_not_named_a_softening(
 
 def test_a_softening_that_slows_down_on_cycled_strokes_is_named_with_its_size():
     # the generator's softening is hyperbolic in its own reversal count, 1 − h·(1 − 1/(1 + n/n_h)),
-    # h = 0.48, n_h = 3.4: by the tribometer's 23rd reversal 87 % of it has happened and it runs at
-    # a sixtieth of its first rate, yet an exponential fitted to it ends at an n_c well above
+    # h = 0.49, n_h = 3.15: by the tribometer's 23rd reversal 88 % of it has happened and it runs
+    # at a sixty-sixth of its first rate, yet an exponential fitted to it ends at an n_c well above
     # n_h. Its strokes cycle through their speeds in three passes (ρ 0.48), so no stiffness
     # following the speed makes that trend, and a change seen slowing down within the session
     # (n_c below the reversal count, ``softening_nc_max``) is named. Its size: the hyperbola
-    # has dropped by h·23/(23 + n_h) = 0.42 by the session's end, an exponential with n_c inside
-    # the session by 63–99 % of its h
+    # has dropped by h·23/(23 + n_h) = 0.43 by the session's end, an exponential with n_c inside
+    # the session by 63–99 % of its h. (Tribometer 1032, a case of the same shape, served here
+    # on earlier numerical platforms; on numpy 2.4 / scipy 1.17 its n_c ends at the bound, 23:
+    # seen, not named.)
     from synth.hidden import SUITE_RATE
 
-    df, truth, _ = make_case("tribometer", 1032, ("cyclic_softening",), rate=SUITE_RATE["tribometer"])
+    df, truth, _ = make_case("tribometer", 3032, ("cyclic_softening",), rate=SUITE_RATE["tribometer"])
     d = diagnose(to_recording(df), oracle_params(truth))
     assert "cyclic_softening" in d.effects and not d.unsettled, d.text()
     soft = next(e for e in d.params_after.effects if e["name"] == "cyclic_softening")["params"]
