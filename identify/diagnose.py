@@ -478,12 +478,13 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
     f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
     longest = averaging_limit(m.t, m.compared.path, m.min_excursion)
     L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
-    est, why = inertia_read(f, vel, m.t, L0, m.v_rest)
+    reading = inertia_read(f, vel, m.t, L0, m.v_rest)
+    est = reading.estimate
     friction_named_force = f"; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}"
     if est is None:
         # the hint only where the regression finds no inertial term at all, not where there is
         # too little steady sliding to look (a sweep whose levels the fit could not find)
-        return None, f"not read: {why}" + (friction_named_force if "no positive inertia" in why else "")
+        return None, f"not read: {reading.why}" + (friction_named_force if reading.no_inertial_term else "")
     if not est.usable:
         return est, (f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to use (σ over a quarter of the value"
                      + (friction_named_force if abs(est.value) < 2.0 * est.stderr else "") + ")")
@@ -604,14 +605,24 @@ class InertiaEstimate:
         return self.stderr < 0.25 * self.value
 
 
+class InertiaReading(NamedTuple):
+    """What ``inertia_read`` found: the estimate, or None and why; ``no_inertial_term`` where
+    the regression finds no positive inertia at all (a measured friction read as the applied
+    force has none), not where there was too little steady sliding to look or the windows disagree."""
+
+    estimate: InertiaEstimate | None
+    why: str = ""
+    no_inertial_term: bool = False
+
+
 def inertia_from_force(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float) -> InertiaEstimate | None:
     """``inertia_read``'s estimate (None where it reads none)."""
-    return inertia_read(f, v, t, L, v_rest)[0]
+    return inertia_read(f, v, t, L, v_rest).estimate
 
 
-def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float) -> tuple[InertiaEstimate | None, str]:
-    """The inertia I of eq. (8) from the recording alone, and where there is none, why: while sliding steadily the friction
-    is a function of the velocity, S(v), so the averaged applied force is I·(mean
+def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float) -> InertiaReading:
+    """The inertia I of eq. (8) from the recording alone (and where there is none, why): while
+    sliding steadily the friction is a function of the velocity, S(v), so the averaged applied force is I·(mean
     acceleration) plus the averaged steady curve; it is regressed on the mean acceleration
     beside a free steady curve (a controller's hunting around each speed level is what
     determines I). No model enters: a model's own dynamics (its presliding state lagging the
@@ -633,8 +644,9 @@ def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: fl
         acc = mean_acceleration(v, t, n_avg)
         steady = (np.abs(v) > v_rest) & (np.abs(acc) * n_avg * dt < 0.1 * np.abs(v))  # dt: the median interval
         if steady.sum() < 50 * n_avg or np.std(acc[steady]) == 0:
-            return None, (f"too little steady sliding to regress the force on the acceleration in ({int(steady.sum())} "
-                          f"samples, at least {50 * n_avg} wanted over {n_avg}-sample means)")
+            return InertiaReading(None, f"too little steady sliding to regress the force on the acceleration in "
+                                        f"({int(steady.sum())} samples, at least {50 * n_avg} wanted over "
+                                        f"{n_avg}-sample means)")
         # MA(f) = I·(mean acceleration) + MA(S(v)): the steady curve averaged like the force
         # (built once per window: the jackknife below refits the same columns on fewer rows)
         X = np.empty((len(v), hats.shape[1] + 1))
@@ -644,16 +656,18 @@ def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: fl
         est[n_avg] = (solve(X, y, steady), steady)
     (I1, _), (I2, steady) = est.values()  # X, y: the longer window's, for the jackknife
     if I1 <= 0 or I2 <= 0:
-        return None, f"the force regressed on the acceleration gives no positive inertia ({I1:.3g} and {I2:.3g})"
+        return InertiaReading(None, f"the force regressed on the acceleration gives no positive inertia ({I1:.3g} "
+                                    f"and {I2:.3g})", no_inertial_term=True)
     if abs(I1 - I2) > 0.1 * I2:
-        return None, (f"the force regressed on the acceleration over two windows disagrees ({I1:.3g} against "
-                      f"{I2:.3g}): something else follows the acceleration")
+        return InertiaReading(None, f"the force regressed on the acceleration over two windows disagrees ({I1:.3g} "
+                                    f"against {I2:.3g}): something else follows the acceleration")
     # (least squares on the rows themselves: from the blocks' normal equations, whose cut of
     # small singular values is coarser, σ moved by up to 40 % where a block holds most of a
     # speed's samples)
     block = np.minimum(rows * JACKKNIFE_BLOCKS // len(v), JACKKNIFE_BLOCKS - 1)
     jk = np.array([solve(X, y, steady & (block != k)) for k in range(JACKKNIFE_BLOCKS)])
-    return InertiaEstimate(I2, math.sqrt((JACKKNIFE_BLOCKS - 1) / JACKKNIFE_BLOCKS * float(np.sum((jk - jk.mean()) ** 2)))), ""
+    return InertiaReading(InertiaEstimate(I2, math.sqrt((JACKKNIFE_BLOCKS - 1) / JACKKNIFE_BLOCKS
+                                                        * float(np.sum((jk - jk.mean()) ** 2)))))
 
 
 def mean_acceleration(v: np.ndarray, t: np.ndarray, L: int) -> np.ndarray:
