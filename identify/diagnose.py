@@ -622,14 +622,14 @@ def inertia_from_force(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_re
 
 def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float) -> InertiaReading:
     """The inertia I of eq. (8) from the recording alone (and where there is none, why): while
-    sliding steadily the friction is a function of the velocity, S(v), so the averaged applied force is I·(mean
-    acceleration) plus the averaged steady curve; it is regressed on the mean acceleration
-    beside a free steady curve (a controller's hunting around each speed level is what
+    sliding steadily the friction is a function of the velocity, S(v), so the averaged applied
+    force is I·(mean acceleration) plus the averaged steady curve; it is regressed on the mean
+    acceleration beside a free steady curve (a controller's hunting around each speed level is what
     determines I). No model enters: a model's own dynamics (its presliding state lagging the
     motion) would follow the acceleration and bias I. Done over 8L and over 32L samples; the
     estimate of the longer only if both are positive and agree within 10 % (anything else
-    that follows the acceleration moves them apart), else None; its standard error by the
-    jackknife over ten blocks of time. A force logged once a sample from a controller whose
+    that follows the acceleration moves them apart), else none, with the reason; its standard
+    error by the jackknife over ten blocks of time. A force logged once a sample from a controller whose
     proportional term moves within the sample reads I low by about kp·dt/2."""
     hats = FreeSteadyCurve(v, v_rest).dense()
     rows = np.arange(len(v))
@@ -1289,6 +1289,8 @@ SIGMA1_REFIT_MAX = 100.0  # σ1 refits within this factor of the file's
 N_REFIT = (1.0, 40.0)  # n of eq. (5) refits within this range (at 40 the transition is all but a corner)
 INERTIA_ABSENT = 0.05  # friction following the acceleration as if I were under this share of the I it was taken with
 BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
+
+
 def _at_range_end(x: float, ends) -> bool:
     """Whether a value a refit ranges on a log scale ended at one of its range's ``ends``."""
     ends = [e for e in ends if e > 0]

@@ -24,7 +24,7 @@ from ..model.params import get_value, spec_of
 
 from .data import Recording
 from .errors import IdentificationError
-from .markov import NAMES, Levels, distinct_speeds, fit_side_honest
+from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, Prepared, constant_velocity_levels, crossing_range, crossings,
                       force_branches, motion_branches, noise_sd, prepare, sliding_levels)
@@ -99,7 +99,6 @@ def has_speed_sweep(levels: Levels) -> bool:
 
 
 REL_TOL_WIDER = (0.12, 0.25)  # a run's velocity tolerance tried, in turn, where the derived one finds too few speeds
-SPEEDS_NEEDED = 4  # distinct speeds per direction the Stribeck curve needs (``markov.fit_side_honest``)
 WIDER_GAIN = 2.0  # … and kept only if it finds this many times the distinct speeds (both directions)
 
 
@@ -113,9 +112,9 @@ def widened_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     travel (a ripple) or in time lets the velocity vary by 10–20 % within a commanded level, and
     at the derived rel_tol (6 %) each level falls apart into pieces shorter than min_run — on a
     stage under a PI velocity loop with a 12 % friction ripple, 2 levels of its 20 were left.
-    Where a direction shows fewer than SPEEDS_NEEDED speeds, the wider tolerances REL_TOL_WIDER
-    are tried and the one giving the most speeds over both directions is kept if it gives at
-    least WIDER_GAIN times the derived one's (the smallest at a tie; the runs' other tests — a
+    Where a direction shows fewer than STRIBECK_MIN_SPEEDS speeds (``markov``: what a Stribeck
+    curve needs), the wider tolerances REL_TOL_WIDER are tried and the one giving the most
+    speeds over both directions is kept if it gives at least WIDER_GAIN times the derived one's (the smallest at a tie; the runs' other tests — a
     friction trend between halves, the settling part dropped — stay as they are):
     ``prep.th.rel_tol`` is set to it, so the report's thresholds show it, and the words say why
     ("" if unchanged). Levels that fall apart lose most of their speeds; a gain of one or two
@@ -123,7 +122,7 @@ def widened_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     (2064: 8 → 10 speeds, 1067: 6 → 9) those made the fit worse (the model as given left 6.67
     where it left 3.33), so they are not taken."""
     before = _speeds_per_side(levels)
-    if min(before) >= SPEEDS_NEEDED:
+    if min(before) >= STRIBECK_MIN_SPEEDS:
         return levels, ""
     best, best_tol = levels, prep.th.rel_tol
     for tol in REL_TOL_WIDER:
@@ -369,7 +368,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     levels = _merge_levels(per_file)
     # presliding branches are picked against S(v)'s F_s: where few speeds set it, branches that
     # reach nothing may be rests picked against a wrong F_s, not presliding the sensor misses
-    picked_on_few = ("" if min(_speeds_per_side(levels)) >= SPEEDS_NEEDED else
+    picked_on_few = ("" if min(_speeds_per_side(levels)) >= STRIBECK_MIN_SPEEDS else
                      f"; the branches were picked against an S(v) resting on "
                      f"{' + '.join(map(str, _speeds_per_side(levels)))} speed(s) (positive + negative): if the "
                      f"sweep holds more levels than were found, see rel_tol and the levels' notes")

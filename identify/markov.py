@@ -17,6 +17,8 @@ from scipy.optimize import least_squares
 from .errors import IdentificationError
 
 NAMES = ("Fs", "Fc", "vs", "delta", "sigma2")
+# a side of S(v) is fitted in its Stribeck form only from this many levels at this many distinct speeds
+STRIBECK_MIN_LEVELS, STRIBECK_MIN_SPEEDS = 6, 4
 
 
 @dataclass
@@ -226,7 +228,7 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
     if k == 0:
         return SideDecision(None, {n: "no constant-velocity levels on this side" for n in NAMES}, "held")
     speeds = distinct_speeds(a)
-    if k >= 6 and speeds >= 4:
+    if k >= STRIBECK_MIN_LEVELS and speeds >= STRIBECK_MIN_SPEEDS:
         fit = fit_side(levels, sign)
         below = int(np.sum(a < abs(fit.values["vs"])))
         bad = _trouble(fit, NAMES)
@@ -256,8 +258,8 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
             why = (f"only {below} level(s) below the Stribeck velocity" if below < 2
                    else f"{', '.join(bad)} not determined by the levels (σ > half the value, a bound or a negative variance)")
     else:
-        why = (f"only {speeds} distinct speed(s) in {k} level(s) on this side; the Stribeck curve needs at least 6 "
-               f"levels at 4 or more speeds")
+        why = (f"only {speeds} distinct speed(s) in {k} level(s) on this side; the Stribeck curve needs at least "
+               f"{STRIBECK_MIN_LEVELS} levels at {STRIBECK_MIN_SPEEDS} or more speeds")
     s2_ok = speeds >= 2 and np.ptp(a) > 0.2 * np.max(a)
     vs_hold = sign * float(np.min(a))
     if s2_ok:
