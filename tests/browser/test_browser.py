@@ -54,10 +54,11 @@ def wait_text(page, text: str, timeout: float = 60.0):
     page.wait_for_selector(f"text={text}", timeout=timeout * 1000)
 
 
-def hysteresis_D(page) -> float:
-    """Friction at point D of the drawn A→B→C→D loop (the marked points)."""
+def hysteresis_D(page) -> tuple[float, float]:
+    """(displacement, friction) at point D of the drawn A→B→C→D loop (the marked points)."""
     tr = next(t for t in plot_traces(page, OVERVIEW) if t["name"] == "A–D")
-    return tr["y"][tr["text"].index("D")]
+    i = tr["text"].index("D")
+    return tr["x"][i], tr["y"][i]
 
 
 def test_scientific_notation_in_a_number_box(chromium, server):
@@ -100,9 +101,13 @@ def test_scientific_notation_in_a_number_box(chromium, server):
     page.close()
 
 
-def test_slider_moves_the_plot_and_the_box(chromium, server):
-    page = open_app(chromium, server[0])
-    box = text_box(page, "F_d(z1) (N·m)") if page.get_by_text("F_d(z1)").count() else None
+def test_slider_moves_the_plot_and_the_box(chromium):
+    # a server of its own: the model starts at the paper's (Table II), whatever other tests set
+    with running_server() as (url, _):
+        _slider_moves_the_plot_and_the_box(open_app(chromium, url))
+
+
+def _slider_moves_the_plot_and_the_box(page):
     page.get_by_text("Transition curve knots").click()
     time.sleep(0.3)
     box = text_box(page, "F_d(z1) (N·m)")
@@ -118,9 +123,12 @@ def test_slider_moves_the_plot_and_the_box(chromium, server):
     time.sleep(1.0)
     v1 = float(box.input_value())
     assert v1 > v0  # the box follows the slider
-    # a stiffer first segment: the loop reaches D at a smaller displacement, same force
-    tr = next(t for t in plot_traces(page, OVERVIEW) if t["name"] == "A–D")
-    assert abs(tr["y"][tr["text"].index("D")] - d0) < 1e-6 * max(1.0, abs(d0)) + 0.5
+    # D (30 N·m, past B: the loop is back on its virgin curve) lies where F_d runs between the
+    # first and second knots (Table II: 16.4 and 75.1 N·m); raising F_d(z1) raises F_d all along
+    # that segment, so the drawn loop reaches D's force at a smaller displacement
+    x1, f1 = hysteresis_D(page)
+    assert abs(f1 - 30.0) < 0.5 and abs(d0[1] - 30.0) < 0.5  # the applied force at D, whatever the curve
+    assert x1 < d0[0] * (1.0 - 0.1 * (v1 - v0) / v0), (d0, (x1, f1), v0, v1)
     page.close()
 
 
@@ -139,7 +147,7 @@ def tribometer_file(tmp_path_factory):
     return path, truth
 
 
-def table_value(page, label: str, expect: float | None = None, timeout: float = 5.0) -> float:
+def table_value(page, label: str, expect: float | None = None, timeout: float = 30.0) -> float:
     """A value of the current-model table (Parameter sets tab). The table follows the model
     within a fraction of a second: with ``expect``, wait up to ``timeout`` for that value."""
     page.get_by_role("tab", name="Parameter sets").click()

@@ -11,6 +11,7 @@ import yaml
 
 from leuven_friction.app import cli as cli_module
 from leuven_friction.app.cli import main
+from leuven_friction.identify.paramfile import load_params
 from leuven_friction.model import default_params
 
 SAMPLE = os.path.join(os.path.dirname(__file__), "..", "..", "sample_data", "constant_velocity.csv")
@@ -246,6 +247,11 @@ def test_a_threshold_set_by_the_user_is_the_one_used(tmp_path, capsys):
     rc, text, _ = run(capsys, "fit", SAMPLE, "--threshold", "window=41", "--no-refine", "--out", out)
     assert rc == 0
     assert "window          = 41" in text and "window set to 41 by the user" in text
+    assert "22 constant-velocity level(s) (11 positive, 11 negative)" in text
+    # and the levels still give Table I's Coulomb friction (27 and −52 N·m) within 3σ
+    p = load_params(out)
+    for side, Fc in (("positive", 27.0), ("negative", -52.0)):
+        assert abs(getattr(p.stribeck, side).Fc - Fc) < 3 * p.uncertainty[f"stribeck.{side}.Fc"]
 
 
 def test_simulate_refuses_a_mat_output_before_the_work(tmp_path, capsys):

@@ -548,7 +548,11 @@ def test_steady_stribeck_identifies_s_of_v_anew_under_a_load_the_file_averaged_o
     # cannot follow it. A file with the true law is left as it is (no clear gain).
     from leuven_friction.identify.diagnose import steady_stribeck
     from leuven_friction.model import Stribeck, StribeckSide, default_params
-    from leuven_friction.model.simulate import stribeck_curve
+    from tests.paper import two_sided
+
+    def law(st, v):  # eqs. (6)-(7) written out (tests/paper.py), on a Stribeck's two sides
+        return two_sided(*[tuple(getattr(getattr(st, sd), k) for k in ("Fs", "Fc", "vs", "delta", "sigma2"))
+                           for sd in ("positive", "negative")], v)
 
     rng = np.random.default_rng(3)
     true = Stribeck(StribeckSide(Fs=9.0, Fc=5.0, vs=0.02, delta=1.4, sigma2=3.0),
@@ -558,7 +562,7 @@ def test_steady_stribeck_identifies_s_of_v_anew_under_a_load_the_file_averaged_o
     speeds = np.geomspace(0.002, 1.0, 14)
     v = _holds([s * sg for s in speeds for sg in (1, -1)], n_per=300)
     load = np.repeat(rng.uniform(0.6, 1.6, len(v) // 350 + 1), 350)[: len(v)]
-    meas = stribeck_curve(truth, v) * load + rng.normal(0.0, 0.05, len(v))
+    meas = law(true, v) * load + rng.normal(0.0, 0.05, len(v))
     t = np.arange(len(v)) * 1e-3
     c = Comparison("friction", t, meas, np.cumsum(v) * 1e-3, v, None, None, 0.05, 1e-6, 5, 1e-5, 1e-4)
     steady = np.abs(v) > 0
@@ -569,8 +573,7 @@ def test_steady_stribeck_identifies_s_of_v_anew_under_a_load_the_file_averaged_o
     assert reid.used and reid.gap_new < 0.5 * reid.gap_file
     # the noise's 0.05 over 300 samples a level, counted in stretches of 5 (a level's sd 0.0065)
     assert reid.noise == pytest.approx(0.05 / math.sqrt(60), rel=0.15) and reid.gap_new < 2 * reid.noise
-    got = base.replace(stribeck=reid.stribeck)
-    assert np.allclose(stribeck_curve(got, v), stribeck_curve(truth, v), rtol=0.02, atol=0.02)
+    assert np.allclose(law(reid.stribeck, v), law(true, v), rtol=0.02, atol=0.02)
     for side in ("positive", "negative"):
         assert getattr(reid.stribeck, side).sigma2 == pytest.approx(getattr(true, side).sigma2, rel=0.05)
     # the load left in: the levels scatter with it, and S(v) no longer follows the law

@@ -6,19 +6,35 @@ import pandas as pd
 import pytest
 
 from leuven_friction.identify.data import DataError, load_recording
-from leuven_friction.identify.markov import Levels, fit_stribeck, stribeck_plus_viscous
-from leuven_friction.identify.mle import Branch, Gaussian, PreslidingData, Quantized, branch_displacement, fit_transition_curve
-from tests.baselines import fit_transition_curve_unweighted
+from scipy.integrate import quad
 
-TRUE = {"positive": (36.0, 27.0, 0.007, 0.5, 7.7), "negative": (-63.0, -52.0, -0.004, 0.9, 8.0)}
+from leuven_friction.identify.markov import Levels, fit_stribeck
+from leuven_friction.identify.mle import Branch, Gaussian, PreslidingData, Quantized, fit_transition_curve
+from tests.baselines import fit_transition_curve_unweighted
+from tests.paper import TABLE_II_F, TABLE_II_Z, TABLE_ONE, eq6
+
+TRUE = {"positive": TABLE_ONE[1], "negative": TABLE_ONE[-1]}
 SPEEDS = np.array([0.001, 0.002, 0.004, 0.008, 0.015, 0.03, 0.06, 0.12, 0.25, 0.5, 1.0])
-Z = np.array([0.0, 1.8e-6, 1.41e-4, 2.66e-4, 5.21e-4])
-F_TRUE = np.array([0.0, 16.4, 75.1, 87.5, 100.0])
+Z, F_TRUE = TABLE_II_Z, TABLE_II_F
+
+
+def eq5_branch(force, z_knots=Z, F_knots=F_TRUE, n=7.0, D=99.0):
+    """Displacement along a presliding branch from its reversal, by eq. (5) integrated here
+    with adaptive quadrature (not the estimator's grid): dz/dF = (dF_d⁻¹/dF) / (1 − (F/D)^n),
+    F_d⁻¹ the inverse of the piecewise-linear transition curve."""
+    def dzdF(F):
+        i = min(np.searchsorted(F_knots, F, side="right") - 1, len(F_knots) - 2)
+        return (z_knots[i + 1] - z_knots[i]) / (F_knots[i + 1] - F_knots[i]) / (1.0 - (F / D) ** n)
+
+    inner = [k for k in F_knots[1:-1]]
+    steps = [quad(dzdF, a, b, points=[k for k in inner if a < k < b] or None, epsabs=0, epsrel=1e-10)[0]
+             for a, b in zip(force[:-1], force[1:])]
+    return np.concatenate([[0.0], np.cumsum(steps)])
 
 
 def synthetic_levels(rng, sd=0.5, count=400):
     v = np.concatenate([SPEEDS, -SPEEDS])
-    F = np.where(v > 0, stribeck_plus_viscous(TRUE["positive"], v), stribeck_plus_viscous(TRUE["negative"], v))
+    F = np.where(v > 0, eq6(TRUE["positive"], v), eq6(TRUE["negative"], v))
     se = sd / np.sqrt(count)  # standard error of each level's mean
     return Levels(v, F + rng.normal(0, se, len(v)), np.full(len(v), se**2), np.full(len(v), count))
 
@@ -49,9 +65,10 @@ def test_markov_uncertainty_is_calibrated_over_monte_carlo():
 
 def _branches(rng, noise, nb=3, npts=300, f_top=96.0):
     out = []
+    f = np.linspace(0, f_top, npts)
+    x_true = eq5_branch(f)
     for _ in range(nb):
-        f = np.linspace(0, f_top, npts)
-        x = branch_displacement(Z, F_TRUE, 7.0, 99.0, f) + 3e-5
+        x = x_true + 3e-5
         if isinstance(noise, Gaussian):
             xm = x + rng.normal(0, noise.sigma, npts)
         else:

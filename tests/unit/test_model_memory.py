@@ -3,11 +3,12 @@
 import numpy as np
 import pytest
 
-from leuven_friction.model import initial_state, simulate_displacement, simulate_force, transition_curve_values
+from leuven_friction.model import initial_state, simulate_displacement, simulate_force
 from leuven_friction.model import kernels as K
 from leuven_friction.model.layout import State
 from leuven_friction.model.experiments import abcd_ramp
 from leuven_friction.model.simulate import memory_summary, pack
+from tests.paper import table_two
 
 
 def _path(points, n_per_leg=2000):
@@ -31,7 +32,7 @@ def test_velocity_reversal_pushes_extremum_and_restarts_curve(kuka):
     # descending branch: F_h = F_b - F_d(Δz) with z reset to zero at the reversal
     dz = r.z[-1]
     assert dz < 0
-    assert r.hysteresis_force[-1] == pytest.approx(fh_top + transition_curve_values(kuka, [dz])[0], rel=1e-9)
+    assert r.hysteresis_force[-1] == pytest.approx(fh_top + table_two(dz), rel=1e-9)
 
 
 def test_closing_internal_loop_wipes_it_out_and_continues_outer_curve(kuka):
@@ -45,7 +46,7 @@ def test_closing_internal_loop_wipes_it_out_and_continues_outer_curve(kuka):
     assert mem["stack_M"] == [kuka.stribeck.positive.Fs]  # and so is the inner maximum
     # after closing, the curve is the one that started at F_b = 0: F_h = F_d(z) exactly (F_h–z plane)
     assert State(st).F_b == 0.0
-    assert r.hysteresis_force[-1] == pytest.approx(transition_curve_values(kuka, [r.z[-1]])[0], rel=1e-12)
+    assert r.hysteresis_force[-1] == pytest.approx(table_two(r.z[-1]), rel=1e-12)
     # (in the x–F plane the closing is only approximate: on the inner ascending curve
     # S(v) - F_b is small, eq. (5) makes z lag x, see test_abcd_* for the paper's ramp)
 

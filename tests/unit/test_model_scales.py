@@ -14,8 +14,8 @@ from leuven_friction.model import (
     simulate_closed_loop,
     simulate_displacement,
     simulate_force,
-    stribeck_curve,
 )
+from tests.paper import TABLE_II_F, TABLE_II_Z, table_one
 
 
 @pytest.mark.parametrize("kind", ["leuven", "lugre", "static"])
@@ -26,7 +26,7 @@ def test_constant_friction_scale_multiplies_steady_sliding_force(kuka, kind, v):
     s = 0.37
     r = simulate_displacement(p, t, v * t, friction_scale=np.full(len(t), s))
     # eq. (6) times s
-    assert r.friction_force[-1] == pytest.approx(s * stribeck_curve(p, np.array([v]))[0], abs=1e-3)
+    assert r.friction_force[-1] == pytest.approx(s * table_one(v), abs=1e-3)
 
 
 def test_absent_scales_equal_scales_of_one(kuka):
@@ -71,7 +71,7 @@ def _virgin_x_at_force(p, kap, F_levels, x_end=1.2e-4):
 def test_stiffness_scale_divides_presliding_displacement(kuka):
     F_levels = [5.0, 10.0, 16.0]
     # Table II's virgin curve: x = F_d^{-1}(F) (z ≈ x far below S(v) - F_b ≈ F_s+)
-    x_table = np.interp(F_levels, kuka.transition_curve.F, kuka.transition_curve.z)
+    x_table = np.interp(F_levels, TABLE_II_F, TABLE_II_Z)
     for kap in (0.5, 2.0, 4.0):
         x = _virgin_x_at_force(kuka, kap, F_levels)
         np.testing.assert_allclose(x, x_table / kap, rtol=0.01)
@@ -81,7 +81,7 @@ def test_stiffness_scale_leaves_sliding_force_unchanged(kuka):
     t = np.arange(0.0, 1.0, 1e-4)
     v = 0.02
     r = simulate_displacement(kuka, t, v * t, stiffness_scale=np.full(len(t), 3.0))
-    assert r.friction_force[-1] == pytest.approx(stribeck_curve(kuka, np.array([v]))[0], abs=1e-3)
+    assert r.friction_force[-1] == pytest.approx(table_one(v), abs=1e-3)
 
 
 def test_lugre_stiffness_scale_multiplies_sigma0(kuka_lugre):
@@ -99,7 +99,7 @@ def test_time_varying_friction_scale_acts_from_its_sample(kuka):
     v = 0.02
     s = np.where(t < 1.0, 1.0, 0.5)
     r = simulate_displacement(kuka, t, v * t, friction_scale=s)
-    steady = stribeck_curve(kuka, np.array([v]))[0]
+    steady = table_one(v)
     assert r.friction_force[np.searchsorted(t, 0.99)] == pytest.approx(steady, abs=1e-3)
     assert r.friction_force[np.searchsorted(t, 1.0)] == pytest.approx(0.5 * steady, abs=1e-3)
 
@@ -117,7 +117,7 @@ def test_closed_loop_plant_feels_friction_scale(kuka, s):
     r = simulate_closed_loop(kuka, t, x_ref, kp=kp, friction_scale=np.full(len(t), s))
     assert np.all(r.velocity[t >= 1.0] > 0)  # sliding throughout the averaging window
     e = (x_ref - r.position)[t >= 2.0]
-    assert np.mean(e) == pytest.approx(s * stribeck_curve(kuka, np.array([v]))[0] / kp, rel=0.005)
+    assert np.mean(e) == pytest.approx(s * table_one(v) / kp, rel=0.005)
 
 
 def test_bad_scales_are_signal_errors(kuka):
@@ -141,7 +141,7 @@ def test_stiffness_scale_changing_at_rest_moves_along_the_curve(kuka):
     rest = t > 10.0
     z = r.z[rest]
     assert np.ptp(z) == 0.0  # the state does not move at rest
-    expected = np.interp(kap[rest] * z[0], kuka.transition_curve.z, kuka.transition_curve.F)
+    expected = np.interp(kap[rest] * z[0], TABLE_II_Z, TABLE_II_F)
     np.testing.assert_allclose(r.hysteresis_force[rest], expected, rtol=1e-12)
     assert r.hysteresis_force[-1] > 1.2 * r.hysteresis_force[np.searchsorted(t, 9.99)]
 

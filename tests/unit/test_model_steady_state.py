@@ -5,10 +5,9 @@ import pytest
 
 from leuven_friction.model import as_model, simulate_displacement
 from leuven_friction.model.experiments import constant_velocity_sweep
+from tests.paper import TABLE_ONE
 
 VELOCITIES = [0.001, 0.004, 0.02, 0.3, -0.001, -0.004, -0.02, -0.3]
-# Table I, written out here rather than read from the model: (Fs, Fc, vs, δ, σ2) per sign
-TABLE_ONE = {+1: (36.0, 27.0, 0.007, 0.5, 7.7), -1: (-63.0, -52.0, -0.004, 0.9, 8.0)}
 
 
 def paper_steady_state(v: float) -> tuple[float, float]:

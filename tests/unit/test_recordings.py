@@ -1,5 +1,5 @@
 """The independent recording generator (synth/recordings.py) against physics it must obey:
-steady sliding friction equals S(v) + σ2·v, presliding follows Masing's doubled virgin curve,
+steady sliding friction equals S(v) + σ2·v, presliding follows the elements and Masing's rule,
 and the hidden-effect hooks act inside the loop (the plant feels them)."""
 
 import numpy as np
@@ -32,14 +32,45 @@ def test_steady_sliding_friction_is_S_of_v():
         assert abs(F - expected) < 0.02 * abs(expected) + 4 * se, (v, F, expected)
 
 
-def test_reversal_curve_is_twice_the_virgin_curve_scaled():
-    # presliding from rest follows Σ min(k_i x, α_i Fs): the truth's reversal curve (span
-    # Fs⁺ − Fs⁻) evaluated at twice the displacement, halved (Masing)
+def test_presliding_of_the_loop_follows_its_elements_and_masing():
+    # the generator's contact (linear stage 3's elements) driven slowly along an imposed path from
+    # rest: forward, every element loads until it slips at α_i·F_s⁺, so F = Σ min(k_i x, α_i F_s⁺);
+    # back from far beyond the presliding range, the force falls by Σ min(k_i z, α_i (F_s⁺ − F_s⁻))
+    # — the reversal curve the generator documents (``Truth.transition_curve``, Masing: the span
+    # of the limits, not twice the virgin curve unless F_s⁻ = −F_s⁺)
+    from synth.recordings import _run
+
     _, truth = make_recording("linear_stage", 3)
-    z = np.linspace(0, truth.presliding_range, 50)
-    span = truth.stribeck["positive"]["Fs"] - truth.stribeck["negative"]["Fs"]
-    virgin = np.sum(np.minimum(np.multiply.outer(z, truth.element_stiffness), truth.element_weight * span / 2), axis=1)
-    assert np.allclose(truth.transition_curve(2 * z) / 2, virgin)
+    k, a = truth.element_stiffness, truth.element_weight
+    side = lambda s: np.array([truth.stribeck[s][q] for q in ("Fs", "Fc", "vs", "delta", "sigma2")])  # noqa: E731
+    sp, sn = side("positive"), side("negative")
+    sp[4] = sn[4] = 0.0  # no viscous term: the elements alone
+    Fs_p, Fs_n = sp[0], sn[0]
+    L = 3.0 * truth.presliding_range
+    n, dt = 4000, 1e-2
+    up = np.linspace(0.0, L, n)
+    down = L - np.linspace(0.0, 2.0 * L, 2 * n)[1:]
+    x_ref = np.concatenate([up, down])
+    m = len(x_ref)
+    state = np.zeros(5 + len(k))
+    X, V, F, U = (np.zeros(m) for _ in range(4))
+    ones = np.ones(m)
+    _run(2, m, 1, dt, np.zeros(m), np.zeros(m), x_ref, 0.0, 0.0, np.zeros(m), ones, ones,
+         k, a, sp, sn, 0.0, truth.inertia, state, X, V, F, U)
+    # the slip limits at the path's speed (|v| = L/(n·dt), far below v_s): eq. (7) written out
+    v = L / (n * dt)
+    lim_p = sp[1] + (sp[0] - sp[1]) * np.exp(-abs(v / sp[2]) ** sp[3])
+    lim_n = sn[1] + (sn[0] - sn[1]) * np.exp(-abs(v / sn[2]) ** sn[3])
+    virgin = np.sum(np.minimum(np.multiply.outer(up, k), a * lim_p), axis=1)
+    np.testing.assert_allclose(F[:n], virgin, rtol=1e-6, atol=1e-9 * Fs_p)
+    z = L - down
+    back = np.sum(a) * lim_p - np.sum(np.minimum(np.multiply.outer(z, k), a * (lim_p - lim_n)), axis=1)
+    np.testing.assert_allclose(F[n:], back, rtol=1e-6, atol=1e-6 * (Fs_p - Fs_n))
+    # the generator's documented reversal curve (at the static limits) is that fall, to within
+    # how far the limits at this speed are from F_s
+    slack = abs(lim_p - Fs_p) + abs(lim_n - Fs_n)
+    assert slack < 1e-3 * (Fs_p - Fs_n)
+    assert np.max(np.abs(F[n - 1] - F[n:] - truth.transition_curve(z))) <= 2 * slack + 1e-9 * (Fs_p - Fs_n)
 
 
 def test_friction_modifier_acts_inside_the_loop():
