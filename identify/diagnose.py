@@ -1676,11 +1676,13 @@ def stiffness_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, 
     """The alternative a stiffness effect is judged against: ``plain`` with the stiffness
     effects ``held`` (``HELD_STIFFNESS``), fitted with it and never named.
 
-    ``rate_stiffness``: a presliding stiffness that varies smoothly with the sliding speed. A
-    contact whose transition depends on speed otherwise than eq. (5) says shows, to the model, a
-    stiffness that follows the speed of each stroke; where a session's speeds rise with the
-    number of reversals (a sweep in rising order), that would otherwise be credited to a
-    softening or hardening with the reversals.
+    ``rate_stiffness``: a presliding stiffness that varies smoothly with the sliding speed (the
+    speed at the sample, smoothed). A contact whose transition depends on speed otherwise than
+    eq. (5) says shows, to the model, a stiffness that follows the speed; where a session's
+    speeds rise with the number of reversals (a sweep in rising order), that would otherwise be
+    credited to a softening or hardening with the reversals. (The speed of the stroke a sample
+    belongs to in its place was tried on a LuGre guideway whose slow strokes fall mid-session: a
+    softening stayed named on one of its two controls — README, recordings made apart.)
 
     ``presliding_range`` (where a friction effect is in the model): the presliding range
     following that effect's factor. A named drift or load scales eq. (3)'s F whole, the

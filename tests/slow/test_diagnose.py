@@ -264,28 +264,35 @@ def test_a_stiffness_that_follows_the_speed_is_not_credited_to_softening():
     assert "cyclic_softening" not in d.effects, d.text()
 
 
-def test_an_effect_the_model_written_does_not_use_is_not_named():
-    # a robot joint with a load and a softening hidden, its base fitted by `fit` as a user does:
-    # a drift (none imposed) passes held out beside the free steady curve in the third round; the
-    # model written, refitted with n, σ1 and S(v), leaves it under PRESCREEN·min_gain of its own
-    # gap. It must not be named, its step goes, and the report says why. (A clean linear stage,
-    # 7010, showed the same with a softening on the numerical platform of earlier versions; on
-    # numpy 2.4 / scipy 1.17 that softening no longer passes held out there.)
+def test_an_effect_the_model_written_does_not_use_is_not_named(monkeypatch):
+    # the rule: an effect named last whose own gain in the model written (``own_gain``: its gap
+    # against the same fit with the effect's amplitudes at no effect) is under PRESCREEN·min_gain
+    # is not named, its step goes, and the report says why. On a tribometer with a drift hidden
+    # (base fitted by `fit`) the drift is named and does a good part of the written gap itself;
+    # reported as doing nothing (``own_gain`` replaced), the same decision must drop it. (The
+    # rule fired by itself on robot joint 3064 until the fit integrated eq. (5) exactly; on this
+    # version no suite case passes held out and then does nothing written.)
+    import leuven_friction.identify.diagnose as D
     from leuven_friction.identify.diagnose import PRESCREEN, Settings
     from leuven_friction.identify.fit import fit_recordings
     from synth.hidden import SUITE_RATE
 
-    df, truth, case = make_case("robot_joint", 3064, ("normal_load", "cyclic_softening"), rate=SUITE_RATE["robot_joint"])
+    df, truth, case = make_case("tribometer", 1002, ("time_drift",), rate=SUITE_RATE["tribometer"])
     rec = to_recording(df, f"{case.label}.csv")
+    params = fit_recordings([rec]).params
     s = Settings()
-    d = diagnose(rec, fit_recordings([rec]).params, settings=s)
-    assert [c["name"] for c in d.unused] == ["time_drift"], d.text()
-    assert "time_drift" not in d.effects and d.unused[0]["own_gain"] < PRESCREEN * s.min_gain
+    real = D.own_gain
+    seen = []
+    monkeypatch.setattr(D, "own_gain", lambda engine, fit: seen.append(real(engine, fit)) or seen[-1])
+    d = diagnose(rec, params, settings=s)
+    assert d.effects == ["time_drift"] and not d.unused, d.text()
+    assert seen and seen[-1] > 10 * PRESCREEN * s.min_gain  # the drift does its share itself
+    monkeypatch.setattr(D, "own_gain", lambda engine, fit: 0.0)
+    d = diagnose(rec, params, settings=s)
+    assert d.effects == [] and [c["name"] for c in d.unused] == ["time_drift"], d.text()
     assert "Passed, not named: time_drift" in d.text()
     # one step per effect named beside the model as given and the alternative: none for the drift
-    assert len(d.steps) == 2 + len(d.effects) and [st["name"] for st in d.steps[2:]] == d.effects
-    # what stays named is what was imposed
-    assert set(d.effects) == {"normal_load", "cyclic_softening"}, d.text()
+    assert len(d.steps) == 2
 
 
 def _stiffness_falling_in_time(kind, seed):
