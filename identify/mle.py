@@ -128,12 +128,16 @@ class TransitionFit:
 
 
 def eq5_factor_integral(F, D: float, n: float):
-    """∫_0^F dF'/(1 − (F'/D)^n) for 0 ≤ F < D, in closed form: F·₂F₁(1, 1/n; 1 + 1/n; (F/D)^n).
+    """∫_0^F dF'/(1 − (F'/D)^n) for 0 ≤ F < D, in closed form: F·₂F₁(1, 1/n; 1 + 1/n; x) with
+    x = (F/D)^n (the series F·Σ x^k/(1 + nk)), evaluated through Pfaff's transformation as
+    F·₂F₁(1, 1; 1 + 1/n; x/(x − 1))/(1 − x): scipy's ₂F₁ at x near 1 is wrong for a 1/n that is
+    not whole (n = 0.7 at 0.999·D: −68 for 19), the transformed argument stays below 0 for every n.
     Exact where a force grid's trapezoids lose accuracy, as F nears D and the factor grows
     without bound (on Table II's curve with n = 7 a grid of 400 was off by 1.5e-7 at 0.97·D,
     three times a proximity sensor's noise)."""
     F = np.asarray(F, dtype=float)
-    return F * hyp2f1(1.0, 1.0 / n, 1.0 + 1.0 / n, (F / D) ** n)
+    x = (F / D) ** n
+    return F * hyp2f1(1.0, 1.0, 1.0 + 1.0 / n, x / (x - 1.0)) / (1.0 - x)
 
 
 def branch_displacement(z_knots, F_knots, n, D, force):
@@ -144,10 +148,15 @@ def branch_displacement(z_knots, F_knots, n, D, force):
     z_knots, F_knots = np.asarray(z_knots, dtype=float), np.asarray(F_knots, dtype=float)
     top = 0.999 * D
     f = np.clip(np.asarray(force, dtype=float), 0.0, top)
-    slope = np.diff(z_knots) / np.diff(F_knots)
-    Gk = eq5_factor_integral(np.minimum(F_knots, top), D, n)
-    # x at each knot (knots past 0.999·D add nothing: the force never gets there)
-    at_knot = np.concatenate([[0.0], np.cumsum(slope * np.diff(Gk))])
+    dz, dF = np.diff(z_knots), np.diff(F_knots)
+    slope = np.divide(dz, dF, out=np.zeros(len(dF)), where=dF > 0)
+    Fk = np.minimum(F_knots, top)
+    Gk = eq5_factor_integral(Fk, D, n)
+    # x at each knot (knots past 0.999·D add nothing: the force never gets there); a segment of
+    # no force width (two knots at one F_d: F_d flat, its inverse jumping) moves the branch by its
+    # z-width times eq. (5)'s factor at that force at once — the limit of a vanishing increment
+    step = np.where(dF > 0, slope * np.diff(Gk), dz / (1.0 - (Fk[:-1] / D) ** n))
+    at_knot = np.concatenate([[0.0], np.cumsum(step)])
     seg = np.clip(np.searchsorted(F_knots, f, side="right") - 1, 0, len(F_knots) - 2)
     return at_knot[seg] + slope[seg] * (eq5_factor_integral(f, D, n) - Gk[seg])
 

@@ -18,9 +18,9 @@ def eq6(theta, v):
 
 
 def two_sided(positive, negative, v):
-    """S(v) + σ2·v with each sign of v on its own side's θ."""
+    """S(v) + σ2·v with each sign of v on its own side's θ, and 0 at rest (v = 0)."""
     v = np.asarray(v, dtype=float)
-    return np.where(v > 0, eq6(positive, v), eq6(negative, v))
+    return np.where(v > 0, eq6(positive, v), np.where(v < 0, eq6(negative, v), 0.0))
 
 
 def table_one(v):

@@ -277,7 +277,7 @@ def test_an_effect_the_model_written_does_not_use_is_not_named(monkeypatch):
     from leuven_friction.identify.fit import fit_recordings
     from synth.hidden import SUITE_RATE
 
-    df, truth, case = make_case("tribometer", 1002, ("time_drift",), rate=SUITE_RATE["tribometer"])
+    df, _, case = make_case("tribometer", 1002, ("time_drift",), rate=SUITE_RATE["tribometer"])
     rec = to_recording(df, f"{case.label}.csv")
     params = fit_recordings([rec]).params
     s = Settings()

@@ -9,7 +9,7 @@ from leuven_friction.identify.data import DataError, load_recording
 from scipy.integrate import quad
 
 from leuven_friction.identify.markov import Levels, fit_stribeck
-from leuven_friction.identify.mle import Branch, Gaussian, PreslidingData, Quantized, fit_transition_curve
+from leuven_friction.identify.mle import Branch, Gaussian, PreslidingData, Quantized, branch_displacement, fit_transition_curve
 from tests.baselines import fit_transition_curve_unweighted
 from tests.paper import TABLE_II_F, TABLE_II_Z, TABLE_ONE, eq6
 
@@ -26,10 +26,35 @@ def eq5_branch(force, z_knots=Z, F_knots=F_TRUE, n=7.0, D=99.0):
         i = min(np.searchsorted(F_knots, F, side="right") - 1, len(F_knots) - 2)
         return (z_knots[i + 1] - z_knots[i]) / (F_knots[i + 1] - F_knots[i]) / (1.0 - (F / D) ** n)
 
-    inner = [k for k in F_knots[1:-1]]
+    inner = list(F_knots[1:-1])
     steps = [quad(dzdF, a, b, points=[k for k in inner if a < k < b] or None, epsabs=0, epsrel=1e-10)[0]
              for a, b in zip(force[:-1], force[1:])]
     return np.concatenate([[0.0], np.cumsum(steps)])
+
+
+@pytest.mark.parametrize("n", [7.0, 2.0, 1.0, 0.7, 25.0])
+def test_branch_displacement_is_eq5_integrated(n):
+    # the estimator's forward model against eq. (5) integrated by quadrature: Table II's curve,
+    # forces up to 0.999·D (the most it uses) and in no particular order, for exponents on both
+    # sides of 1; a curve whose last knots lie beyond D adds nothing past 0.999·D; two knots at
+    # one F_d (a segment of no force width) add nothing either
+    D = 99.0
+    f = np.linspace(0.0, 0.999 * D, 200)
+    want = eq5_branch(f, n=n, D=D)
+    shuffled = np.random.default_rng(1).permutation(len(f))
+    got = branch_displacement(Z, F_TRUE, n, D, f[shuffled])
+    np.testing.assert_allclose(got, want[shuffled], rtol=1e-9, atol=1e-15)
+    # forces beyond 0.999·D are taken at 0.999·D
+    assert branch_displacement(Z, F_TRUE, n, D, np.array([2 * D]))[0] == pytest.approx(want[-1], rel=1e-9)
+    low_D = 60.0  # the knots at 75.1, 87.5 and 100 lie beyond it
+    f2 = np.linspace(0.0, 0.999 * low_D, 50)
+    np.testing.assert_allclose(branch_displacement(Z, F_TRUE, n, low_D, f2), eq5_branch(f2, n=n, D=low_D), rtol=1e-9, atol=1e-15)
+    # a flat stretch of F_d (z from 1.8e-6 to 5e-5 at F_d = 16.4) is the limit of a segment of
+    # vanishing force width: quadrature over one 1e-9 wide gives the branch it must match
+    z3 = np.array([0.0, 1.8e-6, 5e-5, 1.41e-4, 2.66e-4, 5.21e-4])
+    F3 = np.array([0.0, 16.4, 16.4, 75.1, 87.5, 100.0])
+    near = eq5_branch(f, z_knots=z3, F_knots=F3 + np.r_[0.0, 0.0, 1e-9, 0.0, 0.0, 0.0], n=n, D=D)
+    np.testing.assert_allclose(branch_displacement(z3, F3, n, D, f), near, rtol=1e-6, atol=1e-12)
 
 
 def synthetic_levels(rng, sd=0.5, count=400):
