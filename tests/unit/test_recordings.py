@@ -42,8 +42,8 @@ def test_presliding_of_the_loop_follows_its_elements_and_masing():
 
     _, truth = make_recording("linear_stage", 3)
     k, a = truth.element_stiffness, truth.element_weight
-    side = lambda s: np.array([truth.stribeck[s][q] for q in ("Fs", "Fc", "vs", "delta", "sigma2")])  # noqa: E731
-    sp, sn = side("positive"), side("negative")
+    sp, sn = (np.array([truth.stribeck[sd][q] for q in ("Fs", "Fc", "vs", "delta", "sigma2")])
+              for sd in ("positive", "negative"))
     sp[4] = sn[4] = 0.0  # no viscous term: the elements alone
     Fs_p, Fs_n = sp[0], sn[0]
     L = 3.0 * truth.presliding_range
