@@ -90,20 +90,21 @@ def sign_hint(prep: Prepared, levels: Levels) -> str:
 MIN_RANGE_BRANCHES = 3  # reversals whose crossings bound the presliding range for ``with_sliding_levels``
 
 
+def _speeds_per_side(levels: Levels) -> tuple[int, int]:
+    """Distinct speeds of the constant-velocity levels, (positive, negative)."""
+    return tuple(distinct_speeds(levels.velocity[levels.velocity * s > 0]) for s in (1.0, -1.0))
+
+
 def has_speed_sweep(levels: Levels) -> bool:
     """Whether a recording's constant-velocity levels show two distinct speeds in either
     direction. A sweep in one direction leaves the other's few levels as they are: a load or a
     temperature moving along the session can break its runs, and its sliding would pool over
     them."""
-    return any(distinct_speeds(levels.velocity[levels.velocity * s > 0]) >= 2 for s in (1.0, -1.0))
+    return max(_speeds_per_side(levels)) >= 2
 
 
 REL_TOL_WIDER = (0.12, 0.25)  # a run's velocity tolerance tried, in turn, where the derived one finds too few speeds
 WIDER_GAIN = 2.0  # … and kept only if it finds this many times the distinct speeds (both directions)
-
-
-def _speeds_per_side(levels: Levels) -> tuple[int, int]:
-    return tuple(distinct_speeds(levels.velocity[levels.velocity * s > 0]) for s in (1.0, -1.0))
 
 
 def widened_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
@@ -114,8 +115,9 @@ def widened_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     stage under a PI velocity loop with a 12 % friction ripple, 2 levels of its 20 were left.
     Where a direction shows fewer than STRIBECK_MIN_SPEEDS speeds (``markov``: what a Stribeck
     curve needs), the wider tolerances REL_TOL_WIDER are tried and the one giving the most
-    speeds over both directions is kept if it gives at least WIDER_GAIN times the derived one's (the smallest at a tie; the runs' other tests — a
-    friction trend between halves, the settling part dropped — stay as they are):
+    speeds over both directions is kept if it gives at least WIDER_GAIN times the derived one's
+    (the smallest at a tie; the runs' other tests — a friction trend between halves, the
+    settling part dropped — stay as they are):
     ``prep.th.rel_tol`` is set to it, so the report's thresholds show it, and the words say why
     ("" if unchanged). Levels that fall apart lose most of their speeds; a gain of one or two
     is runs at the margin of any tolerance, and on the hidden-effect suite's robot joints
@@ -124,19 +126,20 @@ def widened_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     before = _speeds_per_side(levels)
     if min(before) >= STRIBECK_MIN_SPEEDS:
         return levels, ""
-    best, best_tol = levels, prep.th.rel_tol
+    best, best_tol, best_speeds = levels, prep.th.rel_tol, before
     for tol in REL_TOL_WIDER:
         if tol <= best_tol:
             continue
         trial = constant_velocity_levels(dataclasses.replace(prep, th=dataclasses.replace(prep.th, rel_tol=tol)))
-        if sum(_speeds_per_side(trial)) > sum(_speeds_per_side(best)):
-            best, best_tol = trial, tol
-    if best is levels or sum(_speeds_per_side(best)) < WIDER_GAIN * sum(before):
+        speeds = _speeds_per_side(trial)
+        if sum(speeds) > sum(best_speeds):
+            best, best_tol, best_speeds = trial, tol, speeds
+    if best is levels or sum(best_speeds) < WIDER_GAIN * sum(before):
         return levels, ""
     derived, prep.th.rel_tol = prep.th.rel_tol, best_tol
     return best, (f"rel_tol widened from {derived:g} to {best_tol:g}: at {derived:g} the constant-velocity runs "
                   f"held {len(levels.velocity)} level(s) at {before[0]} + {before[1]} distinct speeds (positive + "
-                  f"negative), at {best_tol:g} {len(best.velocity)} at {' + '.join(map(str, _speeds_per_side(best)))} "
+                  f"negative), at {best_tol:g} {len(best.velocity)} at {best_speeds[0]} + {best_speeds[1]} "
                   f"— the velocity wanders within its runs (a controller holding a speed against a friction "
                   f"that changes); set --threshold rel_tol to choose")
 
@@ -368,9 +371,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     levels = _merge_levels(per_file)
     # presliding branches are picked against S(v)'s F_s: where few speeds set it, branches that
     # reach nothing may be rests picked against a wrong F_s, not presliding the sensor misses
-    picked_on_few = ("" if min(_speeds_per_side(levels)) >= STRIBECK_MIN_SPEEDS else
+    speeds = _speeds_per_side(levels)
+    picked_on_few = ("" if min(speeds) >= STRIBECK_MIN_SPEEDS else
                      f"; the branches were picked against an S(v) resting on "
-                     f"{' + '.join(map(str, _speeds_per_side(levels)))} speed(s) (positive + negative): if the "
+                     f"{speeds[0]} + {speeds[1]} speed(s) (positive + negative): if the "
                      f"sweep holds more levels than were found, see rel_tol and the levels' notes")
 
     # --- S(v): Markov estimator per side, honest about what the levels determine ------------

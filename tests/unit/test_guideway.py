@@ -20,10 +20,11 @@ def _holds(cols, window=200):
     for lv in G.LEVELS:
         for sg in (1, -1):
             m = np.abs(v - sg * lv) < 0.01 * lv
-            m[1:] &= m[:-1]  # drop the first sample of each stretch (and, with the shifts below, 0.5 s)
-            steady = m.copy()
-            for k in range(1, 500):
-                steady[k:] &= m[:-k]
+            m[1:] &= m[:-1]  # drop the first sample of each stretch
+            # and 0.5 s more: a sample counts once the 500 up to it all do
+            run = np.concatenate([[0], np.cumsum(m)])
+            steady = np.zeros(len(m), bool)
+            steady[499:] = run[500:] - run[:-500] == 500
             if steady.sum() > 200:
                 out.append((sg * lv, float(np.mean(f[steady])), float(np.std(f[steady]) / np.sqrt(steady.sum() / 50))))
     return out

@@ -4,14 +4,13 @@ calibration of the stated uncertainties, ML against plain least squares)."""
 import numpy as np
 import pandas as pd
 import pytest
-
-from leuven_friction.identify.data import DataError, load_recording
 from scipy.integrate import quad
 
+from leuven_friction.identify.data import DataError, load_recording
 from leuven_friction.identify.markov import Levels, fit_stribeck
 from leuven_friction.identify.mle import Branch, Gaussian, PreslidingData, Quantized, branch_displacement, fit_transition_curve
 from tests.baselines import fit_transition_curve_unweighted
-from tests.paper import TABLE_II_F, TABLE_II_Z, TABLE_ONE, eq6
+from tests.paper import TABLE_II_F, TABLE_II_Z, TABLE_ONE, two_sided
 
 TRUE = {"positive": TABLE_ONE[1], "negative": TABLE_ONE[-1]}
 SPEEDS = np.array([0.001, 0.002, 0.004, 0.008, 0.015, 0.03, 0.06, 0.12, 0.25, 0.5, 1.0])
@@ -20,7 +19,7 @@ Z, F_TRUE = TABLE_II_Z, TABLE_II_F
 
 def eq5_branch(force, z_knots=Z, F_knots=F_TRUE, n=7.0, D=99.0):
     """Displacement along a presliding branch from its reversal, by eq. (5) integrated here
-    with adaptive quadrature (not the estimator's grid): dz/dF = (dF_d⁻¹/dF) / (1 − (F/D)^n),
+    with adaptive quadrature (not the estimator's closed form): dz/dF = (dF_d⁻¹/dF) / (1 − (F/D)^n),
     F_d⁻¹ the inverse of the piecewise-linear transition curve."""
     def dzdF(F):
         i = min(np.searchsorted(F_knots, F, side="right") - 1, len(F_knots) - 2)
@@ -37,7 +36,7 @@ def test_branch_displacement_is_eq5_integrated(n):
     # the estimator's forward model against eq. (5) integrated by quadrature: Table II's curve,
     # forces up to 0.999·D (the most it uses) and in no particular order, for exponents on both
     # sides of 1; a curve whose last knots lie beyond D adds nothing past 0.999·D; two knots at
-    # one F_d (a segment of no force width) add nothing either
+    # one F_d (a segment of no force width) are a jump in z
     D = 99.0
     f = np.linspace(0.0, 0.999 * D, 200)
     want = eq5_branch(f, n=n, D=D)
@@ -59,7 +58,7 @@ def test_branch_displacement_is_eq5_integrated(n):
 
 def synthetic_levels(rng, sd=0.5, count=400):
     v = np.concatenate([SPEEDS, -SPEEDS])
-    F = np.where(v > 0, eq6(TRUE["positive"], v), eq6(TRUE["negative"], v))
+    F = two_sided(TRUE["positive"], TRUE["negative"], v)
     se = sd / np.sqrt(count)  # standard error of each level's mean
     return Levels(v, F + rng.normal(0, se, len(v)), np.full(len(v), se**2), np.full(len(v), count))
 
