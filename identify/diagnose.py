@@ -492,6 +492,57 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
                  f"{8 * L0 + 1} and {32 * L0 + 1} samples)")
 
 
+INERTIA_ATTENUATION = 0.02  # the noise of the mean acceleration may take at most this share of its variance
+
+
+def inertia_beside_model(rec: Recording, params: FrictionParams) -> InertiaEstimate | None:
+    """Eq. (8)'s I read beside a model of the friction: the averaged applied force less the
+    model's friction, simulated along the compared path and averaged the same way, regressed on
+    the mean acceleration (and a constant) while moving, f̄ − F̄_model = I·ā + c; its σ by the
+    jackknife over ten blocks of time. Where ``recording_inertia`` reads nothing because the
+    friction follows the acceleration by itself (each speed reached from a reversal, through
+    presliding), the model's memory carries that part. A misfit of the model that follows the
+    acceleration enters I too, so a caller holds this value rather than estimating with it.
+
+    The averaging doubles from the path's window until the velocity's noise makes at most
+    ``INERTIA_ATTENUATION`` of the mean acceleration's variance while moving: a noisy regressor
+    pulls the slope towards 0 by that share (an encoder's 5-sample acceleration read a
+    0.035 kg·m² turntable as 0.009). None without an applied force and a position, where
+    nothing moves, or where no averaging within 1 % of the record is quiet enough."""
+    if rec.force is None or rec.position is None or rec.friction is not None or len(rec.time) < 50:
+        return None
+    m = motion_reading(rec)
+    vel, v_noise = m.tachometer or (m.velocity, m.v_noise)
+    moving = np.abs(vel) > m.v_rest  # at rest the friction is what is applied, not what the model's path says
+    f = np.asarray(rec.force, dtype=np.float64)
+    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
+    # at most 1 % of the record (``averaging_length``'s own cap), not a tenth of a typical stroke:
+    # the regression needs no transition resolved, and a presliding resonance's small reversals
+    # can make the typical stroke a few samples long
+    longest = max(5, len(m.t) // 100)
+    L = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t))
+    while True:
+        acc = mean_acceleration(vel, m.t, L)
+        if moving.sum() < 50 * L or np.std(acc[moving]) == 0:
+            return None
+        if 2.0 * v_noise**2 / ((L - 1) * m.dt) ** 2 <= INERTIA_ATTENUATION * float(np.var(acc[moving])):
+            break
+        if L >= longest:
+            return None
+        L = min(2 * L - 1, longest + 1 - longest % 2)
+    model = simulate_displacement(params.replace(effects=()), m.t, m.compared.path).friction_force
+    y = uniform_filter1d(f, L, mode="nearest") - uniform_filter1d(model, L, mode="nearest")
+    X = np.column_stack([np.ones(len(y)), acc])
+
+    def slope(mask):
+        return float(np.linalg.lstsq(X[mask], y[mask], rcond=None)[0][1])
+
+    block = np.minimum(np.arange(len(y)) * JACKKNIFE_BLOCKS // len(y), JACKKNIFE_BLOCKS - 1)
+    jk = np.array([slope(moving & (block != k)) for k in range(JACKKNIFE_BLOCKS)])
+    sd = math.sqrt((JACKKNIFE_BLOCKS - 1) / JACKKNIFE_BLOCKS * float(np.sum((jk - jk.mean()) ** 2)))
+    return InertiaEstimate(slope(moving), sd)
+
+
 def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction",
                   reading: dict | None = None) -> Comparison:
     """Where to compare: in friction when the recording has a friction column or an applied
@@ -1285,7 +1336,32 @@ REFIT_BASE_U = 8  # refit_transition's vector: log g, log κ0, log n, log σ1, t
 CURVE_FACTOR_MAX = 20.0  # each segment of a piecewise-linear F_d refitted within this factor of the file's
 CURVE_GROUPS_MAX = 8  # … in at most this many groups of neighbouring segments (each one simulation per Jacobian)
 CURVE_MIN_GAIN = 0.1  # … and only if the model alone then leaves this much less RMS gap
-SIGMA1_REFIT_MAX = 100.0  # σ1 refits within this factor of the file's
+SIGMA1_REFIT_MAX = 100.0  # σ1 refits within this factor of the file's …
+SIGMA1_HELD_REFIT_MAX = 1e4  # … or of this where its fit held it (not determined by the data)
+
+
+def sigma1_scanned(engine: Engine, params: FrictionParams, entries: list, mask: np.ndarray) -> float:
+    """The σ1 a refit of a held σ1 starts from: the best of the file's σ1 × 10^k, |k| ≤ 4 (one
+    simulation each), the rest as the file has it. A local least-squares step from a scale
+    decades off does not get there within a refit's steps (``REFIT_NFEV_FROM``)."""
+    idx = _thinned(mask)
+    cost = {}
+    for k in range(-4, 5):
+        s1 = params.sigma1 * 10.0 ** k
+        engine.set_base(params.replace(sigma1=s1))
+        cost[s1] = float(np.sum(engine.residual_at(engine.predict(1.0, 1.0, entries), idx) ** 2))
+    engine.set_base(params)
+    return min(cost, key=cost.get)
+
+
+def sigma1_refit_factor(params: FrictionParams) -> float:
+    """The factor either way of the file's σ1 that a refit ranges over: SIGMA1_REFIT_MAX, or
+    SIGMA1_HELD_REFIT_MAX where the fit that made the file held σ1 (its provenance says so).
+    A held σ1 is a scale, not a measurement: on the generator's robot joints, held at the
+    data's scale (0.1 % of F_c at the slowest level's speed), the refit ran into a bound a
+    factor 100 above it."""
+    held = (params.provenance or {}).get("held") or {}
+    return SIGMA1_HELD_REFIT_MAX if "sigma1" in held else SIGMA1_REFIT_MAX
 N_REFIT = (1.0, 40.0)  # n of eq. (5) refits within this range (at 40 the transition is all but a corner)
 INERTIA_ABSENT = 0.05  # friction following the acceleration as if I were under this share of the I it was taken with
 BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
@@ -1381,9 +1457,10 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)
     c = math.log(CURVE_FACTOR_MAX)
-    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(N_REFIT[0] / n0), -math.log(SIGMA1_REFIT_MAX)], np.full(NS, -b),
+    s1f = math.log(sigma1_refit_factor(params))
+    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(N_REFIT[0] / n0), -s1f], np.full(NS, -b),
                          np.full(NC, -c), [f[2] for t in terms for f in t.free]])
-    hi = np.concatenate([[math.log(5), math.log(20), math.log(N_REFIT[1] / n0), math.log(SIGMA1_REFIT_MAX)], np.full(NS, b),
+    hi = np.concatenate([[math.log(5), math.log(20), math.log(N_REFIT[1] / n0), s1f], np.full(NS, b),
                          np.full(NC, c), [f[3] for t in terms for f in t.free]])
     u0 = np.concatenate([np.zeros(nb), prior_u]) if start is None else np.asarray(start, float)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
@@ -2312,7 +2389,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     free = engine.free
     engine.free, engine.free_inertia = None, True
     try:
-        alone = refit_transition(engine, base_params, prior_terms, prior_u, allm)
+        start = None
+        if sigma1_refit_factor(base_params) > SIGMA1_REFIT_MAX and base_params.model == "leuven":
+            s1 = sigma1_scanned(engine, base_params, prior0, allm)
+            start = np.concatenate([[0.0, 0.0, 0.0, math.log(s1 / base_params.sigma1)],
+                                    np.zeros(refit_length(base_params, False) - 4), prior_u])
+        alone = refit_transition(engine, base_params, prior_terms, prior_u, allm, start=start)
         nc = refit_length(base_params, True) - REFIT_BASE_U if s.refit_curve and base_params.model == "leuven" else 0
         refit_curve = False
         if nc:
@@ -2555,10 +2637,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     if params.model == "leuven":
         levels = [getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
                   for sd in ("positive", "negative") for k in ("Fs", "Fc")]
-        # σ1 refits within a factor SIGMA1_REFIT_MAX of the file's (``refit_transition``): at that bound the
+        # σ1 refits within a factor of the file's (``sigma1_refit_factor``): at that bound the
         # record wants it further, and the value written is a bound, not an estimate
-        s1_ends = (params.sigma1 / SIGMA1_REFIT_MAX, params.sigma1 * SIGMA1_REFIT_MAX)
-        s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's: the record pushes it further)"
+        s1f = sigma1_refit_factor(params)
+        s1_ends = (params.sigma1 / s1f, params.sigma1 * s1f)
+        s1_bound = (f" (at its bound, a factor {s1f:g} from the file's: the record pushes it further)"
                     if _at_range_end(final_base.sigma1, s1_ends) else "")
         n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further)"
                    if _at_range_end(final_base.n, N_REFIT) else "")

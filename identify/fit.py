@@ -26,6 +26,7 @@ from .data import Recording
 from .errors import IdentificationError
 from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest
 from .mle import Gaussian, PreslidingData, fit_transition_curve
+from .refine import sigma1_at_data_scale, sigma1_held_reason
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, Prepared, constant_velocity_levels, crossing_range, crossings,
                       force_branches, motion_branches, noise_sd, prepare, sliding_levels)
 
@@ -547,8 +548,13 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                                   "branches (force ramps with reversals, or reversals of a motion with measured friction)"
                                   + "".join(f"; {pr.source}: {h}" for pr, lv in zip(preps, per_file)
                                             if (h := sign_hint(pr, lv))))
-    p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start)
+    s1 = None if base is not None else sigma1_at_data_scale(p.stribeck, levels)
+    if s1 is not None:
+        # not the paper's robot joint's σ1 in these data's units; the refinement may estimate it
+        p = p.replace(sigma1=s1)
+        held["sigma1"] = sigma1_held_reason(s1, "not estimated by this fit")
     held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
+    p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start)
 
     unc = {} if inertia_sd is None else {"inertia": inertia_sd}
     for side, dec in decisions.items():
@@ -618,29 +624,33 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
     usable (σ under a quarter of the value; several recordings pooled by inverse variance) and
     no parameter file was given: the built-in default is another machine's. A file's inertia
     is kept (a value from the drawings is usually better than a regression on a log), and the
-    notes say what the recording reads. Held and named otherwise."""
+    notes say what the recording reads. A reading too uncertain to write (and no file) is held
+    at, not replaced by the default; held and named otherwise."""
 
     from .diagnose import recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
 
-    reads = []
+    reads, loose = [], []  # usable readings; readings too uncertain to write as an estimate
     for r in recordings:
         est, why = recording_inertia(r)
         if r.force is not None and r.friction is None:
             notes.append(f"{r.source}: inertia {why}")  # "inertia read as …" / "inertia not read: …"
-        if est is not None and est.usable:
-            reads.append(est)
+        if est is not None:
+            (reads if est.usable else loose).append(est)
     if not any(r.force is not None and r.friction is None for r in recordings):
         held["inertia"] = f"not needed: no recording takes friction from an applied force (eq. (8)): kept {start}"
         return p, None
+    if not reads and not from_file:
+        held_at = _held_inertia(p, recordings, loose)
+        if held_at is not None:
+            value, why = held_at
+            held["inertia"] = (f"{why}: held at that reading, not at the built-in default {p.inertia:.4g} (another "
+                               f"machine's; give --params with this machine's)")
+            return p.replace(inertia=value), None
     if not reads:
         held["inertia"] = f"not determined by the recordings (see the notes): kept {start}"
         return p, None
-    values = np.array([e.value for e in reads])
-    w = 1.0 / np.maximum(np.array([e.stderr for e in reads]), 1e-9 * values) ** 2
-    value = float(np.sum(w * values) / np.sum(w))
-    sd = float(1.0 / math.sqrt(np.sum(w)))
-    spread = float(np.sum(w * (values - value) ** 2))
-    if len(reads) > 1 and chi2_dist.sf(spread, len(reads) - 1) < MISFIT_P:
+    value, sd, agree = _pooled(reads)
+    if not agree:
         held["inertia"] = (f"the recordings read {', '.join(f'{e.value:.4g} ± {e.stderr:.2g}' for e in reads)}, "
                            f"which disagree beyond their σ: kept {start}")
         return p, None
@@ -652,6 +662,44 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
     notes.append(f"inertia {value:.4g} ± {sd:.2g} read from the applied force (eq. (8)), replacing the built-in "
                  f"default {p.inertia:.4g}")
     return p.replace(inertia=value), sd
+
+
+def _held_inertia(p: FrictionParams, recordings: list[Recording], loose: list) -> tuple[float, str] | None:
+    """The value eq. (8)'s inertia is held at where the force regressed on the acceleration
+    alone gives no usable reading, and why: the model-free readings too uncertain to write,
+    where there are any (noisy, but no model enters them); else the reading beside the model
+    just fitted (``diagnose.inertia_beside_model``), where each recording gives one with σ under
+    a quarter of it and they agree; else None (the built-in default stays). Not an estimate:
+    noise enters the first, and a misfit of the model that follows the acceleration the second
+    (on the robot joints of ``synth/elsewhere.py``, whose curve the fit holds, it read 8–37 %
+    high). On the turntable of ``synth/turntable.py`` (0.035 kg·m²), whose every speed is reached
+    through a reversal, the model-free windows disagree and the second read 0.0356, where the
+    built-in default, the paper's robot joint's, is 5."""
+    if loose:
+        value, sd, _ = _pooled(loose)
+        return value, (f"read as {value:.4g} ± {sd:.2g} from the applied force, too uncertain to write as an estimate "
+                       f"(σ over a quarter of the value)")
+    from .diagnose import inertia_beside_model
+
+    beside = [inertia_beside_model(r, p) for r in recordings if r.force is not None and r.friction is None]
+    if beside and all(e is not None and e.usable for e in beside):
+        value, sd, agree = _pooled(beside)
+        if agree:
+            return value, (f"no usable reading from the applied force alone (notes); beside the model fitted here it "
+                           f"reads {value:.4g} ± {sd:.2g}, which a misfit of the model that follows the acceleration "
+                           f"would enter too")
+    return None
+
+
+def _pooled(reads: list) -> tuple[float, float, bool]:
+    """Inverse-variance mean of inertia readings, its σ, and whether they agree within their σ
+    (a χ² of the spread beyond MISFIT_P)."""
+    values = np.array([e.value for e in reads])
+    w = 1.0 / np.maximum(np.array([e.stderr for e in reads]), 1e-9 * values) ** 2
+    value = float(np.sum(w * values) / np.sum(w))
+    spread = float(np.sum(w * (values - value) ** 2))
+    agree = len(reads) < 2 or chi2_dist.sf(spread, len(reads) - 1) >= MISFIT_P
+    return value, float(1.0 / math.sqrt(np.sum(w))), agree
 
 
 def _held_value(params: FrictionParams, path: str) -> str:

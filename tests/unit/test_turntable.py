@@ -1,0 +1,94 @@
+"""The turntable simulated apart from the project (synth/turntable.py) against the physics it
+claims, and `fit` on its log (degrees, mN·m, ms; friction not logged) against its truth."""
+
+import math
+
+import numpy as np
+import pytest
+
+from synth import turntable as T
+
+
+@pytest.fixture(scope="module")
+def control():
+    cols, _ = T.simulate(seed=201)
+    return cols
+
+
+def _holds(cols, window=100):
+    """(speed, mean torque, its standard error) over each held speed's last 1.5 s, where the
+    velocity over ``window`` samples is within 1 % of the level (SI units)."""
+    t = cols["t [ms]"] * 1e-3
+    th = np.radians(cols["angle [deg]"])
+    u = cols["torque [mN*m]"] * 1e-3
+    w = np.full(len(th), np.nan)
+    h = window // 2
+    w[h:-h] = (th[window:] - th[:-window]) / (t[window:] - t[:-window])
+    out = []
+    for lv in T.LEVELS:
+        for sg in (1, -1):
+            m = np.abs(w - sg * lv) < 0.01 * lv
+            if m.sum() > 1000:
+                idx = np.flatnonzero(m)[-1500:]
+                out.append((sg * lv, float(np.mean(u[idx])), float(np.std(u[idx]) / math.sqrt(len(idx) / 20))))
+    return out
+
+
+def dahl_steady(w):
+    """Dahl's contact turning steadily: its state at the limit g(ω) = T_c + (T_s − T_c)·e^(−|ω|/ω_s),
+    plus σ2·ω (written out here from the simulator's stated parameters)."""
+    return np.sign(w) * (0.42 + (0.55 - 0.42) * np.exp(-np.abs(w) / 0.08)) + 0.03 * w
+
+
+def test_held_speeds_show_the_contacts_steady_friction(control):
+    holds = _holds(control)
+    # the six fastest speeds, both directions; below 0.05 rad/s the falling Stribeck curve
+    # makes the loop stick and slip (no steady hold)
+    assert len(holds) >= 12
+    for w, u, se in holds:
+        # the PI loop's integral takes the steady error to 0: the torque is the friction
+        assert abs(u - dahl_steady(w)) < 2e-3 + 4 * se, (w, u, dahl_steady(w))
+
+
+def test_the_drift_raises_the_late_friction_by_its_factor(control):
+    drifted, _ = T.simulate(seed=201, drift=(0.3, 25.0))
+    t = control["t [ms]"] * 1e-3
+    late = {round(w, 6): u for w, u, _ in _holds({k: a[t > 80.0] for k, a in drifted.items()})}
+    late0 = {round(w, 6): u for w, u, _ in _holds({k: a[t > 80.0] for k, a in control.items()})}
+    common = set(late) & set(late0)
+    assert common
+    for w in common:
+        # after 80 s the factor is 1 + 0.3·(1 − e^(−80/25)) = 1.288 … 1.3
+        assert 1.28 < late[w] / late0[w] < 1.305, (w, late[w], late0[w])
+
+
+def test_fit_holds_the_turntables_inertia_at_its_reading_not_the_paper_robots(tmp_path, control):
+    # friction is not logged, and every speed is reached through a reversal: the force
+    # regressed on the acceleration alone finds its two windows disagreeing (the Dahl
+    # transition follows the acceleration); beside the fitted model the inertia reads the
+    # turntable's 0.035 kg·m², and is held there (named as held), not at the paper's robot
+    # joint's 5 — the same in SI as in the file's degrees, mN·m and ms
+    from leuven_friction.identify.data import load_recording
+    from leuven_friction.identify.fit import fit_recordings
+
+    T.write(tmp_path / "tt.csv", control)
+    si = {"t [s]": control["t [ms]"] * 1e-3, "angle [rad]": np.radians(control["angle [deg]"]),
+          "torque [N*m]": control["torque [mN*m]"] * 1e-3}
+    (tmp_path / "tt_si.csv").write_text("t [s],angle [rad],torque [N*m]\n" + "".join(
+        f"{a:.4f},{b:.10g},{c:.6g}\n" for a, b, c in zip(*si.values())))
+    fits = [fit_recordings([load_recording(tmp_path / name)], refine=False) for name in ("tt.csv", "tt_si.csv")]
+    for res in fits:
+        p = res.params
+        assert "inertia" in res.held and "inertia" not in p.uncertainty
+        assert "beside the model fitted here" in res.held["inertia"]
+        assert p.inertia == pytest.approx(0.035, rel=0.05)
+        # S(v) of the contact, Fc and the viscous part within 2 %
+        assert p.stribeck.positive.Fc == pytest.approx(0.42, rel=0.02)
+        assert p.stribeck.negative.Fc == pytest.approx(-0.42, rel=0.02)
+        assert p.stribeck.positive.sigma2 == pytest.approx(0.03, rel=0.02)
+        # σ1 held at the data's scale: a damping force of 0.1 % of F_c at the slowest level
+        # found (the stick-slip holds below 0.05 rad/s are not levels), not the paper's 1500
+        assert "sigma1" in res.held
+        assert p.sigma1 == pytest.approx(1e-3 * 0.42 / np.min(np.abs(res.levels.velocity)), rel=0.02)
+        assert p.sigma1 < 1e-3 * 0.42 / T.LEVELS[-1] * 1e3
+    assert fits[0].params.inertia == pytest.approx(fits[1].params.inertia, rel=1e-3)
