@@ -75,7 +75,8 @@ from scipy.signal import savgol_filter
 from scipy.stats import rankdata
 from numba import njit
 
-from ..model import FrictionParams, SteadyAlong, Stribeck, StribeckSide, TransitionCurve, simulate_displacement, steady_along
+from ..model import (FrictionParams, SteadyAlong, Stribeck, StribeckSide, TransitionCurve, friction_along,
+                     simulate_displacement, steady_along)
 from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
@@ -507,7 +508,7 @@ def inertia_beside_model(rec: Recording, params: FrictionParams) -> InertiaEstim
     The averaging doubles from the path's window until the velocity's noise makes at most
     ``INERTIA_ATTENUATION`` of the mean acceleration's variance while moving: a noisy regressor
     pulls the slope towards 0 by that share (an encoder's 5-sample acceleration read a
-    0.035 kg·m² turntable as 0.009). None without an applied force and a position, where
+    0.035 kg·m² turntable as 0.0075). None without an applied force and a position, where
     nothing moves, or where no averaging within 1 % of the record is quiet enough."""
     if rec.force is None or rec.position is None or rec.friction is not None or len(rec.time) < 50:
         return None
@@ -1231,9 +1232,8 @@ class Engine:
                 self._sims.append(self._sims.pop(i))
                 return sim
         sa = self._steady()
-        # along the shared S(v)'s own copies of the path: it then knows them by identity, not by
-        # comparing two records sample by sample on every simulation
-        sim = simulate_displacement(self.p, sa.time, sa.position, stiffness_scale=ss, steady=sa).friction_force
+        # along the shared S(v)'s own copies of the path, checked once when they were made
+        sim = friction_along(self.p, sa, stiffness_scale=ss)
         self._sims = self._sims[-(SIM_CACHE - 1):] + [(self.p, key, sim)]
         self.sims += 1
         return sim

@@ -667,18 +667,19 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
 def _held_inertia(p: FrictionParams, recordings: list[Recording], loose: list) -> tuple[float, str] | None:
     """The value eq. (8)'s inertia is held at where the force regressed on the acceleration
     alone gives no usable reading, and why: the model-free readings too uncertain to write,
-    where there are any (noisy, but no model enters them); else the reading beside the model
+    where there are any and they stand 2 σ clear of 0 (noisy, but no model enters them); else the reading beside the model
     just fitted (``diagnose.inertia_beside_model``), where each recording gives one with σ under
     a quarter of it and they agree; else None (the built-in default stays). Not an estimate:
     noise enters the first, and a misfit of the model that follows the acceleration the second
     (on the robot joints of ``synth/elsewhere.py``, whose curve the fit holds, it read 8–37 %
     high). On the turntable of ``synth/turntable.py`` (0.035 kg·m²), whose every speed is reached
-    through a reversal, the model-free windows disagree and the second read 0.0356, where the
+    through a reversal, the model-free windows disagree and the second read 0.0373, where the
     built-in default, the paper's robot joint's, is 5."""
     if loose:
         value, sd, _ = _pooled(loose)
-        return value, (f"read as {value:.4g} ± {sd:.2g} from the applied force, too uncertain to write as an estimate "
-                       f"(σ over a quarter of the value)")
+        if value > 2.0 * sd:  # a reading within 2 σ of nothing says nothing of the scale
+            return value, (f"read as {value:.4g} ± {sd:.2g} from the applied force, too uncertain to write as an "
+                           f"estimate (σ over a quarter of the value)")
     from .diagnose import inertia_beside_model
 
     beside = [inertia_beside_model(r, p) for r in recordings if r.force is not None and r.friction is None]

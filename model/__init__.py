@@ -17,6 +17,7 @@ _WHERE = {
     "as_model": "params", "default_params": "params",
     "COLUMNS": "simulate", "SimResult": "simulate", "SteadyAlong": "simulate", "initial_state": "simulate",
     "simulate_closed_loop": "simulate", "simulate_displacement": "simulate", "simulate_force": "simulate",
+    "friction_along": "simulate",
     "steady_along": "simulate", "stribeck_curve": "simulate", "transition_curve_values": "simulate",
 }
 

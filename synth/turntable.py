@@ -14,8 +14,8 @@ over each step's angle increment with g held (T_d relaxes to ±g as e^(−σ0|Δ
 friction σ2·ω. No micro-damping: the contact has no σ1.
 Integration: semi-implicit Euler at 5 kHz (friction from the step's start, then ω, then θ).
 Drive: open-loop torque ramps to ±0.8 T_s with internal loops (presliding), then a PI velocity
-loop over 10 speeds 0.004…1.5 rad/s in shuffled order (fixed seed), each held 2.5 s in each
-direction.
+loop over 10 speeds 0.004…1.5 rad/s in two passes, each in a shuffled order (fixed seed), each
+speed held 2.5 s in each direction a pass.
 Sensors (logged at 1 kHz): a 2^16-count encoder (9.6·10⁻⁵ rad a count, floor), written in
 degrees; the motor torque command with white noise (1.5 mN·m), written in mN·m; time in ms.
 Friction is not logged: `fit` takes it from the torque and the inertia it reads (eq. (8)).
@@ -37,6 +37,7 @@ AMAX = 20.0                                # rad/s², reference rate limit
 SCHEDULE_SEED = 11
 LEVELS = np.geomspace(0.004, 1.5, 10)      # rad/s
 HOLD = 2.5                                 # s per direction per level
+PASSES = 2                                 # over the levels
 RAMP_RATE = 0.1                            # N·m/s
 
 
@@ -52,7 +53,10 @@ def build_schedule(ramp_rate=RAMP_RATE):
     pts = torque_ramp_points()
     segs += [('torque', a, b, abs(b - a) / ramp_rate) for a, b in zip(pts[:-1], pts[1:])]
     segs.append(('torque', 0.0, 0.0, 0.5))
-    order = np.random.default_rng(SCHEDULE_SEED).permutation(len(LEVELS))
+    rng = np.random.default_rng(SCHEDULE_SEED)
+    # two passes over the levels, each in its own shuffled order: a speed seen at two times
+    # tells a change in time from the shape of S(v)
+    order = np.concatenate([rng.permutation(len(LEVELS)) for _ in range(PASSES)])
     for i in order:
         w = float(LEVELS[i])
         segs += [('vel', w, HOLD), ('vel', -w, HOLD), ('vel', 0.0, 0.5)]

@@ -151,7 +151,7 @@ def test_a_shared_steady_curve_gives_the_simulation_it_replaces(kuka, kind):
     # ``steady_along`` holds v and S(v) of one path for one S(v): every simulation along that
     # path with that S(v) — here at four presliding stiffnesses — must be the one computed
     # without it, to the bit, and S(v) itself eq. (7) (Table I) at each velocity
-    from leuven_friction.model import steady_along
+    from leuven_friction.model import friction_along, steady_along
 
     p = as_model(kuka, kind)
     t = np.arange(0.0, 2.0, 1e-4)
@@ -166,10 +166,12 @@ def test_a_shared_steady_curve_gives_the_simulation_it_replaces(kuka, kind):
         b = simulate_displacement(p, t, x, stiffness_scale=kappa, steady=shared)
         np.testing.assert_array_equal(a.friction_force, b.friction_force)
         np.testing.assert_array_equal(a.velocity, b.velocity)
+        # the friction alone (``friction_along``, what the diagnosis's fits call), to the bit
+        np.testing.assert_array_equal(a.friction_force, friction_along(p, shared, stiffness_scale=kappa))
 
 
 def test_a_steady_curve_of_another_s_or_path_is_refused(kuka):
-    from leuven_friction.model import steady_along
+    from leuven_friction.model import friction_along, steady_along
 
     t = np.arange(0.0, 1.0, 1e-3)
     x = 1e-3 * np.sin(2 * np.pi * t)
@@ -179,6 +181,8 @@ def test_a_steady_curve_of_another_s_or_path_is_refused(kuka):
         kuka.stribeck.negative))
     with pytest.raises(ValueError, match="another path or another S"):
         simulate_displacement(other, t, x, steady=shared)
+    with pytest.raises(ValueError, match="another S"):
+        friction_along(other, shared)
     with pytest.raises(ValueError, match="another path or another S"):
         simulate_displacement(kuka, t, 2.0 * x, steady=shared)
     x *= 3.0  # the caller's path changed in place: the copy kept is not that path any more
