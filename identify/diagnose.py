@@ -539,9 +539,8 @@ def inertia_beside_model(rec: Recording, params: FrictionParams) -> InertiaEstim
         return float(np.linalg.lstsq(X[mask], y[mask], rcond=None)[0][1])
 
     block = np.minimum(np.arange(len(y)) * JACKKNIFE_BLOCKS // len(y), JACKKNIFE_BLOCKS - 1)
-    jk = np.array([slope(moving & (block != k)) for k in range(JACKKNIFE_BLOCKS)])
-    sd = math.sqrt((JACKKNIFE_BLOCKS - 1) / JACKKNIFE_BLOCKS * float(np.sum((jk - jk.mean()) ** 2)))
-    return InertiaEstimate(slope(moving), sd)
+    full = slope(moving)
+    return InertiaEstimate(full, jackknife_sd(full, [slope(moving & (block != k)) for k in range(JACKKNIFE_BLOCKS)]))
 
 
 def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction",
@@ -1336,32 +1335,7 @@ REFIT_BASE_U = 8  # refit_transition's vector: log g, log κ0, log n, log σ1, t
 CURVE_FACTOR_MAX = 20.0  # each segment of a piecewise-linear F_d refitted within this factor of the file's
 CURVE_GROUPS_MAX = 8  # … in at most this many groups of neighbouring segments (each one simulation per Jacobian)
 CURVE_MIN_GAIN = 0.1  # … and only if the model alone then leaves this much less RMS gap
-SIGMA1_REFIT_MAX = 100.0  # σ1 refits within this factor of the file's …
-SIGMA1_HELD_REFIT_MAX = 1e4  # … or of this where its fit held it (not determined by the data)
-
-
-def sigma1_scanned(engine: Engine, params: FrictionParams, entries: list, mask: np.ndarray) -> float:
-    """The σ1 a refit of a held σ1 starts from: the best of the file's σ1 × 10^k, |k| ≤ 4 (one
-    simulation each), the rest as the file has it. A local least-squares step from a scale
-    decades off does not get there within a refit's steps (``REFIT_NFEV_FROM``)."""
-    idx = _thinned(mask)
-    cost = {}
-    for k in range(-4, 5):
-        s1 = params.sigma1 * 10.0 ** k
-        engine.set_base(params.replace(sigma1=s1))
-        cost[s1] = float(np.sum(engine.residual_at(engine.predict(1.0, 1.0, entries), idx) ** 2))
-    engine.set_base(params)
-    return min(cost, key=cost.get)
-
-
-def sigma1_refit_factor(params: FrictionParams) -> float:
-    """The factor either way of the file's σ1 that a refit ranges over: SIGMA1_REFIT_MAX, or
-    SIGMA1_HELD_REFIT_MAX where the fit that made the file held σ1 (its provenance says so).
-    A held σ1 is a scale, not a measurement: on the generator's robot joints, held at the
-    data's scale (0.1 % of F_c at the slowest level's speed), the refit ran into a bound a
-    factor 100 above it."""
-    held = (params.provenance or {}).get("held") or {}
-    return SIGMA1_HELD_REFIT_MAX if "sigma1" in held else SIGMA1_REFIT_MAX
+SIGMA1_REFIT_MAX = 100.0  # σ1 refits within this factor of the file's
 N_REFIT = (1.0, 40.0)  # n of eq. (5) refits within this range (at 40 the transition is all but a corner)
 INERTIA_ABSENT = 0.05  # friction following the acceleration as if I were under this share of the I it was taken with
 BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
@@ -1457,10 +1431,9 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)
     c = math.log(CURVE_FACTOR_MAX)
-    s1f = math.log(sigma1_refit_factor(params))
-    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(N_REFIT[0] / n0), -s1f], np.full(NS, -b),
+    lo = np.concatenate([[-math.log(5), -math.log(20), math.log(N_REFIT[0] / n0), -math.log(SIGMA1_REFIT_MAX)], np.full(NS, -b),
                          np.full(NC, -c), [f[2] for t in terms for f in t.free]])
-    hi = np.concatenate([[math.log(5), math.log(20), math.log(N_REFIT[1] / n0), s1f], np.full(NS, b),
+    hi = np.concatenate([[math.log(5), math.log(20), math.log(N_REFIT[1] / n0), math.log(SIGMA1_REFIT_MAX)], np.full(NS, b),
                          np.full(NC, c), [f[3] for t in terms for f in t.free]])
     u0 = np.concatenate([np.zeros(nb), prior_u]) if start is None else np.asarray(start, float)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
@@ -2389,12 +2362,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     free = engine.free
     engine.free, engine.free_inertia = None, True
     try:
-        start = None
-        if sigma1_refit_factor(base_params) > SIGMA1_REFIT_MAX and base_params.model == "leuven":
-            s1 = sigma1_scanned(engine, base_params, prior0, allm)
-            start = np.concatenate([[0.0, 0.0, 0.0, math.log(s1 / base_params.sigma1)],
-                                    np.zeros(refit_length(base_params, False) - 4), prior_u])
-        alone = refit_transition(engine, base_params, prior_terms, prior_u, allm, start=start)
+        alone = refit_transition(engine, base_params, prior_terms, prior_u, allm)
         nc = refit_length(base_params, True) - REFIT_BASE_U if s.refit_curve and base_params.model == "leuven" else 0
         refit_curve = False
         if nc:
@@ -2637,11 +2605,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     if params.model == "leuven":
         levels = [getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
                   for sd in ("positive", "negative") for k in ("Fs", "Fc")]
-        # σ1 refits within a factor of the file's (``sigma1_refit_factor``): at that bound the
+        # σ1 refits within a factor SIGMA1_REFIT_MAX of the file's (``refit_transition``): at that bound the
         # record wants it further, and the value written is a bound, not an estimate
-        s1f = sigma1_refit_factor(params)
-        s1_ends = (params.sigma1 / s1f, params.sigma1 * s1f)
-        s1_bound = (f" (at its bound, a factor {s1f:g} from the file's: the record pushes it further)"
+        s1_ends = (params.sigma1 / SIGMA1_REFIT_MAX, params.sigma1 * SIGMA1_REFIT_MAX)
+        s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's: the record pushes it further)"
                     if _at_range_end(final_base.sigma1, s1_ends) else "")
         n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further)"
                    if _at_range_end(final_base.n, N_REFIT) else "")

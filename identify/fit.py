@@ -26,7 +26,7 @@ from .data import Recording
 from .errors import IdentificationError
 from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .refine import sigma1_at_data_scale, sigma1_held_reason
+from .refine import sigma1_at_data_scale
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, Prepared, constant_velocity_levels, crossing_range, crossings,
                       force_branches, motion_branches, noise_sd, prepare, sliding_levels)
 
@@ -548,13 +548,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                                   "branches (force ramps with reversals, or reversals of a motion with measured friction)"
                                   + "".join(f"; {pr.source}: {h}" for pr, lv in zip(preps, per_file)
                                             if (h := sign_hint(pr, lv))))
-    s1 = None if base is not None else sigma1_at_data_scale(p.stribeck, levels)
-    if s1 is not None:
-        # not the paper's robot joint's σ1 in these data's units; the refinement may estimate it
-        p = p.replace(sigma1=s1)
-        held["sigma1"] = sigma1_held_reason(s1, "not estimated by this fit")
+    # the model an inertia is read beside takes σ1 at the data's scale where it would otherwise be
+    # the built-in default, another machine's (``_held_inertia``)
+    reading_sigma1 = None if base is not None else sigma1_at_data_scale(p.stribeck, levels)
+    p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start, reading_sigma1)
     held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
-    p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start)
 
     unc = {} if inertia_sd is None else {"inertia": inertia_sd}
     for side, dec in decisions.items():
@@ -617,7 +615,7 @@ MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not f
 
 
 def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: bool, held: dict, notes: list,
-                  start: str) -> tuple[FrictionParams, float | None]:
+                  start: str, reading_sigma1: float | None = None) -> tuple[FrictionParams, float | None]:
     """Eq. (8)'s inertia I, read from the recordings that log an applied force
     (``diagnose.recording_inertia``: the force regressed on the mean acceleration beside a free
     steady curve while sliding steadily, no model entering). Written with its σ where it is
@@ -640,7 +638,7 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
         held["inertia"] = f"not needed: no recording takes friction from an applied force (eq. (8)): kept {start}"
         return p, None
     if not reads and not from_file:
-        held_at = _held_inertia(p, recordings, loose)
+        held_at = _held_inertia(p if reading_sigma1 is None else p.replace(sigma1=reading_sigma1), recordings, loose)
         if held_at is not None:
             value, why = held_at
             held["inertia"] = (f"{why}: held at that reading, not at the built-in default {p.inertia:.4g} (another "
@@ -674,7 +672,9 @@ def _held_inertia(p: FrictionParams, recordings: list[Recording], loose: list) -
     (on the robot joints of ``synth/elsewhere.py``, whose curve the fit holds, it read 8–37 %
     high). On the turntable of ``synth/turntable.py`` (0.035 kg·m²), whose every speed is reached
     through a reversal, the model-free windows disagree and the second read 0.0373, where the
-    built-in default, the paper's robot joint's, is 5."""
+    built-in default, the paper's robot joint's, is 5. ``p`` is the model read beside: with the
+    built-in σ1 (1500, in the turntable's N·m·s/rad) its damping alone left a gap a thousand
+    times the friction there, and no reading."""
     if loose:
         value, sd, _ = _pooled(loose)
         if value > 2.0 * sd:  # a reading within 2 σ of nothing says nothing of the scale

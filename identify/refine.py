@@ -261,7 +261,9 @@ def refine_fit(res, preps: list[Prepared], *, max_samples: int = 20000, max_nfev
     s1 = sigma1_start(res)
     if not sigma1_given and s1 is not None:
         res.params = res.params.replace(sigma1=s1)
-        res.held["sigma1"] = sigma1_held_reason(s1, "not determined by these data")
+        res.held["sigma1"] = (f"not determined by these data: held at {s1:.3g}, a damping force of 0.1 % of F_c at the "
+                              f"slowest level's speed (the paper's value is another machine's; give --params with this "
+                              f"machine's)")
     second = _refine_once(res, preps, max_samples, max_nfev, free_sigma1=False)
     if second.refinement.get("done"):
         second.refinement["what"] += "; σ1 held (not determined by these data)"
@@ -275,19 +277,11 @@ def sigma1_start(res) -> float | None:
 
 def sigma1_at_data_scale(stribeck: Stribeck, levels) -> float | None:
     """σ1 at the data's scale: a damping force of 0.1 % of the Coulomb level at the slowest
-    level's speed (None without levels). The value σ1 is held at where the data do not
-    determine it: the paper's 1500 N·m·s/rad is one robot joint's, in its units (on a
-    turntable of F_c 0.42 N·m, ``synth/turntable.py``, it alone left a model gap of 44 times the friction)."""
+    level's speed (None without levels)."""
     if levels is None or not len(levels.velocity):
         return None
     fc = max(abs(stribeck.positive.Fc), abs(stribeck.negative.Fc))
     return 1e-3 * fc / float(np.min(np.abs(levels.velocity)))
-
-
-def sigma1_held_reason(s1: float, why: str) -> str:
-    """The held reason of a σ1 held at ``sigma1_at_data_scale``."""
-    return (f"{why}: held at {s1:.3g}, a damping force of 0.1 % of F_c at the slowest level's speed (the paper's "
-            f"value is another machine's; give --params with this machine's)")
 
 
 def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):

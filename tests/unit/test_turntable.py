@@ -90,9 +90,6 @@ def test_fit_holds_the_turntables_inertia_at_its_reading_not_the_paper_robots(tm
         assert p.stribeck.positive.Fc == pytest.approx(0.42, rel=0.02)
         assert p.stribeck.negative.Fc == pytest.approx(-0.42, rel=0.02)
         assert p.stribeck.positive.sigma2 == pytest.approx(0.03, rel=0.02)
-        # σ1 held at the data's scale: a damping force of 0.1 % of F_c at the slowest level
-        # found (the stick-slip holds below 0.05 rad/s are not levels), not the paper's 1500
-        assert "sigma1" in res.held
-        assert p.sigma1 == pytest.approx(1e-3 * 0.42 / np.min(np.abs(res.levels.velocity)), rel=0.02)
-        assert p.sigma1 < 1e-3 * 0.42 / T.LEVELS[-1] * 1e3
+        # σ1, which torque ramps and steady speeds do not determine, is named as held
+        assert "sigma1" in res.held and "sigma1" not in p.uncertainty
     assert fits[0].params.inertia == pytest.approx(fits[1].params.inertia, rel=1e-3)
