@@ -622,8 +622,9 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
     usable (σ under a quarter of the value; several recordings pooled by inverse variance) and
     no parameter file was given: the built-in default is another machine's. A file's inertia
     is kept (a value from the drawings is usually better than a regression on a log), and the
-    notes say what the recording reads. A reading too uncertain to write (and no file) is held
-    at, not replaced by the default; held and named otherwise."""
+    notes say what the recording reads. Without a file and without a usable reading, it is held
+    at the data's own reading where there is one (``_held_inertia``: ``reading_sigma1`` is the
+    σ1 of the model read beside), else at the built-in default; named as held either way."""
 
     from .diagnose import recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
 
@@ -665,12 +666,12 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
 def _held_inertia(p: FrictionParams, recordings: list[Recording], loose: list) -> tuple[float, str] | None:
     """The value eq. (8)'s inertia is held at where the force regressed on the acceleration
     alone gives no usable reading, and why: the model-free readings too uncertain to write,
-    where there are any and they stand 2 σ clear of 0 (noisy, but no model enters them); else the reading beside the model
-    just fitted (``diagnose.inertia_beside_model``), where each recording gives one with σ under
-    a quarter of it and they agree; else None (the built-in default stays). Not an estimate:
-    noise enters the first, and a misfit of the model that follows the acceleration the second
-    (on the robot joints of ``synth/elsewhere.py``, whose curve the fit holds, it read 8–37 %
-    high). On the turntable of ``synth/turntable.py`` (0.035 kg·m²), whose every speed is reached
+    where there are any and they stand 2 σ clear of 0 (noisy, but no model enters them); else
+    the reading beside the model just fitted (``diagnose.inertia_beside_model``), where each
+    recording gives one with σ under a quarter of it and they agree; else None (the built-in
+    default stays). Not an estimate: noise enters the first, and a misfit of the model that
+    follows the acceleration the second (on the robot joints of ``synth/elsewhere.py``, whose
+    curve the fit holds, it read 8–35 % high). On the turntable of ``synth/turntable.py`` (0.035 kg·m²), whose every speed is reached
     through a reversal, the model-free windows disagree and the second read 0.0373, where the
     built-in default, the paper's robot joint's, is 5. ``p`` is the model read beside: with the
     built-in σ1 (1500, in the turntable's N·m·s/rad) its damping alone left a gap a thousand
