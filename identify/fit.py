@@ -26,7 +26,6 @@ from .data import Recording
 from .errors import IdentificationError
 from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .refine import sigma1_at_data_scale
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, Prepared, constant_velocity_levels, crossing_range, crossings,
                       force_branches, motion_branches, noise_sd, prepare, sliding_levels)
 
@@ -549,7 +548,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                                   + "".join(f"; {pr.source}: {h}" for pr, lv in zip(preps, per_file)
                                             if (h := sign_hint(pr, lv))))
     # the model an inertia is read beside takes σ1 at the data's scale where it would otherwise be
-    # the built-in default, another machine's (``_held_inertia``)
+    # the built-in default, another machine's (``_held_inertia``); imported here, as the
+    # refinement below is, so that importing the fit does not load the optimiser
+    from .refine import sigma1_at_data_scale
+
     reading_sigma1 = None if base is not None else sigma1_at_data_scale(p.stribeck, levels)
     p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start, reading_sigma1)
     held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
