@@ -284,6 +284,21 @@ def sigma1_at_data_scale(stribeck: Stribeck, levels) -> float | None:
     return 1e-3 * fc / float(np.min(np.abs(levels.velocity)))
 
 
+STUCK_DAMPING_RATIO = 0.3  # ζ of the stuck plant that a held σ1 gives (``sigma1_at_damping_ratio``)
+
+
+def sigma1_at_damping_ratio(curve: TransitionCurve, inertia: float, zeta: float = STUCK_DAMPING_RATIO) -> float:
+    """σ1 held where nothing estimates it and the inertia enters (friction taken from an applied
+    force, eq. (8)): the damping 2ζ·√(K0·I) that gives the stuck plant — the inertia on the
+    presliding spring of stiffness K0 = dF_d/dz at 0 — the damping ratio ζ. σ1 acts on ż in
+    eq. (3), and while the contact sticks ż is the motion, so this is where σ1 has a scale of
+    the machine's own: the paper's 1500 N·m·s/rad is another machine's, 3–40 times off the
+    generator's joints and stages and 10⁵ times a turntable's. ζ = 0.3 lies between the
+    damping ratios of the contacts it was checked on (0.6 in ``synth/recordings.py``, 0.1 on the
+    LuGre guideway of ``synth/guideway.py``, none in ``synth/turntable.py``'s Dahl contact)."""
+    return float(2.0 * zeta * np.sqrt(curve.initial_stiffness() * inertia))
+
+
 def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     tc = res.params.transition_curve
     z1 = float(tc.z[1]) if tc.kind == "piecewise_linear" and len(tc.z) > 1 else np.inf

@@ -406,6 +406,13 @@ class TransitionCurve:
                 raise ParameterError(f"{path}.shape: missing (tanh_linear needs A, z0, k)")
             self.shape.validate(f"{path}.shape")
 
+    def initial_stiffness(self) -> float:
+        """dF_d/dz at z = 0: the stiffness of the stuck contact (the first segment's slope of a
+        piecewise-linear curve; A/z0 + k of the tanh curve)."""
+        if self.kind == "piecewise_linear":
+            return float(self.F[1] / self.z[1])
+        return float(self.shape.A / self.shape.z0 + self.shape.k)
+
     def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray]:
         """(kind code, abscissas, ordinates-or-shape) for ``model.kernels``."""
         if self.kind == "piecewise_linear":
