@@ -547,22 +547,23 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                                   "branches (force ramps with reversals, or reversals of a motion with measured friction)"
                                   + "".join(f"; {pr.source}: {h}" for pr, lv in zip(preps, per_file)
                                             if (h := sign_hint(pr, lv))))
-    # the model an inertia is read beside takes σ1 at the data's scale where it would otherwise be
-    # the built-in default, another machine's (``_held_inertia``); imported here, as the
-    # refinement below is, so that importing the fit does not load the optimiser
-    from .refine import sigma1_at_damping_ratio, sigma1_at_data_scale
+    # the model an inertia is read beside takes σ1 at the data's scale (``_held_inertia``): the σ1
+    # held below, at the stuck plant's damping ratio, needs the inertia being read, and the
+    # built-in default is another machine's; imported here, as the refinement below is, so
+    # that importing the fit does not load the optimiser
+    from .refine import STUCK_DAMPING_RATIO, sigma1_at_damping_ratio, sigma1_at_data_scale
 
     reading_sigma1 = None if base is not None else sigma1_at_data_scale(p.stribeck, levels)
     p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start, reading_sigma1)
     if base is None and not any(pr.friction is not None for pr in preps):
-        # friction taken from an applied force alone (eq. (8)): the refinement below holds σ1
-        # (it barely shapes presliding under slow ramps), so hold it at the stuck plant's scale,
-        # not at the paper's robot joint's
+        # friction taken from an applied force alone (eq. (8)): the refinement below does not
+        # estimate σ1 (force ramps do not determine it) but simulates with it, and so does the
+        # diagnosis: hold it at the stuck plant's scale, not at the paper's robot joint's
         s1 = sigma1_at_damping_ratio(p.transition_curve, p.inertia)
-        held["sigma1"] = (f"not estimated by this fit: held at {s1:.4g}, 2ζ·√(K0·I) with ζ = 0.3, a damping ratio of "
-                          f"the stuck plant (K0 = {p.transition_curve.initial_stiffness():.4g}, the slope of F_d at 0; "
-                          f"I = {p.inertia:.4g}), not at the built-in {p.sigma1:.4g}, another machine's (give --params "
-                          f"with this machine's)")
+        held["sigma1"] = (f"not estimated by this fit: held at {s1:.4g}, 2ζ·√(K0·I) with ζ = {STUCK_DAMPING_RATIO:g}, "
+                          f"a damping ratio of the stuck plant (K0 = {p.transition_curve.initial_stiffness():.4g}, the "
+                          f"slope of F_d at 0; I = {p.inertia:.4g}), not at the built-in {p.sigma1:.4g}, another "
+                          f"machine's (give --params with this machine's)")
         p = p.replace(sigma1=s1)
     held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
 

@@ -248,7 +248,8 @@ def refine_fit(res, preps: list[Prepared], *, max_samples: int = 20000, max_nfev
     import copy
 
     if not any(pr.friction is not None for pr in preps):
-        # presliding driven by the applied force barely depends on σ1 (slow ramps): hold it
+        # slow force ramps do not determine σ1: hold it (``fit`` holds it, without a file, at
+        # ``sigma1_at_damping_ratio``)
         return _refine_once(res, preps, max_samples, max_nfev, free_sigma1=False)
     trial = copy.copy(res)
     trial.held = dict(res.held)

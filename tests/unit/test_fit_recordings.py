@@ -55,9 +55,10 @@ def test_each_kind_recovers_the_generators_truth(refined):
     # the maximum-likelihood transition curve follows the generator's reversal curve at every
     # knot below the top one (the top knot sits where eq. (5)'s factor (F/D)^n dominates, and
     # the generator's Maxwell-slip curve is not of the Leuven form). The output-error
-    # refinement, where it is kept (the joint), reproduces the simulated position better with
-    # a lower curve beyond the first knot (README, known limits): there only the first knot
-    # is held to the generator's curve.
+    # refinement, where it is kept, reproduces the joint's simulated position better with a
+    # lower curve beyond the first knot (README, known limits): there only the first knot is
+    # held to the generator's curve; the stage's first knot lies under its scale's noise, and
+    # its refined knots are held as the maximum-likelihood ones are.
     assert res.transition_fit is not None and res.n_branches >= 3
     z = np.array(res.transition_fit.z)
     Fml = np.array(res.transition_fit.F)
@@ -67,10 +68,19 @@ def test_each_kind_recovers_the_generators_truth(refined):
     assert far.any(), z
     assert np.all(np.abs(Fml[far] - Ft[far]) < 0.35 * Ft[far]), (z, Fml, Ft)
     F = np.array(res.params.transition_curve.F)
-    if res.refinement.get("done"):
+    if res.refinement.get("done") and kind == "robot_joint":
         assert abs(F[1] - Ft[1]) < 0.35 * Ft[1], (F, Ft)
+    elif res.refinement.get("done"):
+        assert np.all(np.abs(F[far] - Ft[far]) < 0.35 * Ft[far]), (z, F, Ft)
     assert np.all(np.diff(F) > 0) and F[-1] < 2 * Ft[-1], (F, Ft)
     assert res.params.units["position"] == ("rad" if kind == "robot_joint" else "m")
+    if kind != "tribometer":
+        # friction from the applied force: σ1 is not estimated, and is held at the stuck plant's
+        # scale — the generator's own σ1 (a damping ratio of 0.6 of its plant, from its element
+        # stiffnesses and inertia) within a factor 3, where the paper's 1500 is 3–5 times the
+        # joints' and a tenth of the stages'
+        assert "sigma1" in res.held and "sigma1" not in res.params.uncertainty
+        assert 1 / 3 < res.params.sigma1 / truth.sigma1 < 3, (res.params.sigma1, truth.sigma1)
 
 
 def test_tribometer_reaction_sign_and_normal_load_are_recognised():
@@ -202,14 +212,14 @@ def test_knots_closer_than_the_resolution_are_refused():
 
 
 def test_output_error_refinement_lowers_the_residual_and_keeps_the_truth(refined):
-    """Force-driven refinement (robot joint: position simulated from the applied torque)
-    closes the residual; where it cannot (stage, tribometer) it is declined, said so."""
+    """Force-driven refinement (robot joint, linear stage: position simulated from the applied
+    force) lowers the residual; where it cannot (tribometer) it is declined, said so."""
     kind, res, truth = refined
     rf = res.refinement
-    if kind in ("linear_stage", "tribometer"):
-        # known limits (README): the refinement cannot lower the stage's presliding residual,
-        # nor the tribometer's friction residual (crossings sampled at a few points), by 10 %;
-        # it must then say so and leave the Markov/ML estimates in place
+    if kind == "tribometer":
+        # known limit (README): the refinement cannot lower the tribometer's friction residual
+        # (crossings sampled at a few points) by 10 %; it must then say so and leave the
+        # Markov/ML estimates in place
         assert not rf["done"] and ("less than 10 %" in rf["reason"] or "flat segment" in rf["reason"]), rf
         _check_against_truth(res, truth)
         return
