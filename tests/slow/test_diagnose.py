@@ -420,8 +420,9 @@ def test_a_drift_a_rising_sweep_hides_is_named_once_the_speeds_are_shuffled():
     # its own (1006 named with b = +0.09 ± 0.09 when σ1 was held at the paper's 1500, and
     # seen at 3.1 % held out, 1.9 % in steady sliding, with σ1 at the stuck plant's damping
     # ratio; 3000 the other way round, b = −0.21 ± 0.14), so the test asks it of one of the
-    # two. Over the suite's joints and stages the same change of schedule names 19 of 21
-    # drifts against 16 (docs/diagnosis-history.md, "A drift on a sweep in rising speeds")
+    # two. Over the suite's joints and stages the same change of schedule names 18 of 21
+    # drifts (19 with σ1 at 1500) against 16 (docs/diagnosis-history.md, "A drift on a sweep in
+    # rising speeds", and "σ1 held at a damping ratio of the stuck plant")
     from leuven_friction.identify.fit import fit_recordings
     from synth.hidden import SUITE_RATE, shuffled_levels
 
