@@ -294,7 +294,7 @@ def sigma1_at_damping_ratio(curve: TransitionCurve, inertia: float, zeta: float 
     presliding spring of stiffness K0 = dF_d/dz at 0 — the damping ratio ζ. σ1 acts on ż in
     eq. (3), and while the contact sticks ż is the motion, so this is where σ1 has a scale of
     the machine's own: the paper's 1500 N·m·s/rad is another machine's, 3–40 times off the
-    generator's joints and stages and 10⁵ times a turntable's. ζ = 0.3 lies between the
+    generator's joints and stages and 1,700 times the turntable's held value. ζ = 0.3 lies between the
     damping ratios of the contacts it was checked on (0.6 in ``synth/recordings.py``, 0.1 on the
     LuGre guideway of ``synth/guideway.py``, none in ``synth/turntable.py``'s Dahl contact)."""
     return float(2.0 * zeta * np.sqrt(curve.initial_stiffness() * inertia))
