@@ -5,7 +5,7 @@ with hidden drift and a robot joint with a hidden load dependence, from ``synth/
 timed; a baseline (one displacement simulation of the same recording) is timed in the same
 process so the ratio travels between machines.
 
-``python -m bench.diagnosis --suite [--quick] [--fit-base] [--no-require-settling] [--shuffled-sweeps] [--start SEED] [--out FILE]``: the hidden-effect suite — every
+``python -m bench.diagnosis --suite [--quick] [--fit-base] [--no-require-settling] [--shuffled-sweeps] [--start SEED] [--kinds K,…] [--out FILE]``: the hidden-effect suite — every
 case diagnosed from its CSV with the generator's own friction (no effect) seen through the
 Leuven model as the base — and the confusion matrix true × named.
 """
@@ -142,16 +142,30 @@ def format_matrix(conf) -> str:
     return "\n".join(lines)
 
 
+def suite_cases(quick: bool = False, start: int = 1000, kinds=None) -> list:
+    """The suite's (kind, seed, effects) cases from seed ``start`` (``synth.hidden.suite``; the
+    quick one is smaller), only those of ``kinds`` where given."""
+    from synth.hidden import KINDS, suite
+
+    cases = suite(3, 6, 1, start=start) if quick else suite(10, 20, 4, start=start)
+    if kinds:
+        unknown = sorted(set(kinds) - set(KINDS))
+        if unknown:
+            raise ValueError(f"--kinds: unknown kind {unknown[0]!r} (the suite has {', '.join(KINDS)})")
+        cases = [c for c in cases if c[0] in kinds]
+    return cases
+
+
 def run_suite(quick: bool = False, out: str | None = None, progress=print, base: str = "oracle",
-              must_settle: bool = True, start: int = 1000, shuffled: bool = False) -> dict:
+              must_settle: bool = True, start: int = 1000, shuffled: bool = False, kinds=None) -> dict:
     """Diagnose every case of the suite; ``start`` is its first seed (the README's numbers are
     from 1000; another start draws other machines, schedules and effects, none of them seen
     while the decision rules were set). ``shuffled``: the joints' and stages' sweeps visit
     their speed levels in a shuffled order (``synth.hidden.shuffled_levels``), the experiment
-    the diagnosis proposes where a sweep in rising speeds confounds a drift with S(v)."""
-    from synth.hidden import suite
-
-    cases = suite(3, 6, 1, start=start) if quick else suite(10, 20, 4, start=start)
+    the diagnosis proposes where a sweep in rising speeds confounds a drift with S(v).
+    ``kinds``: only the cases of these kinds of recording (a change that touches one kind
+    alone is measured on it; the others' cases are the same)."""
+    cases = suite_cases(quick, start, kinds)
     rows = []
     t0 = time.perf_counter()
     for i, (kind, seed, eff) in enumerate(cases):
@@ -215,10 +229,14 @@ if __name__ == "__main__":
     args = sys.argv[1:]
     if "--suite" in args:
         out = args[args.index("--out") + 1] if "--out" in args else None
-        res = run_suite("--quick" in args, out, base="fit" if "--fit-base" in args else "oracle",
-                        must_settle="--no-require-settling" not in args,
-                        start=int(args[args.index("--start") + 1]) if "--start" in args else 1000,
-                        shuffled="--shuffled-sweeps" in args)
+        try:
+            res = run_suite("--quick" in args, out, base="fit" if "--fit-base" in args else "oracle",
+                            must_settle="--no-require-settling" not in args,
+                            start=int(args[args.index("--start") + 1]) if "--start" in args else 1000,
+                            shuffled="--shuffled-sweeps" in args,
+                            kinds=args[args.index("--kinds") + 1].split(",") if "--kinds" in args else None)
+        except ValueError as e:
+            sys.exit(f"error: {e}")
         print(format_matrix(res["confusion"]))
         print(json.dumps(res["scores"], indent=1))
         print(json.dumps(res["sd_calibration"], indent=1))
