@@ -128,6 +128,8 @@ def cmd_simulate(args) -> int:
     stages.done(f"read {len(rec)} rows from {args.input}")
     if not args.params:
         print(default_params_warning(params.units, rec.units), file=sys.stderr)
+    elif (warning := units_mismatch(args.params, params.units, rec)):
+        print(warning, file=sys.stderr)
     position = rec.position
     if args.smooth_path:
         import numpy as np
@@ -169,6 +171,18 @@ def default_params_warning(param_units: dict, rec_units: dict) -> str:
         line += (f"; its parameters are in {pu}, {param_units.get('force')}, the recording in {ru}, "
                  f"{rec_units.get('force') or rec_units.get('friction') or '?'}: the friction is not of this scale")
     return line
+
+
+def units_mismatch(path: str, param_units: dict, rec) -> str | None:
+    """A warning where a parameter file and a recording are of different kinds of machine (one in
+    m and N, the other in rad and N·m): the numbers would be applied to the recording as they
+    are. Said, not refused: a header without units is read as SI of the kind its names suggest."""
+    pu, ru = param_units.get("position"), rec.units.get("position")
+    if not (pu and ru and pu != ru):
+        return None
+    rf = rec.units.get("force") or rec.units.get("friction") or "?"
+    return (f"warning: {path} is in {pu} and {param_units.get('force')}, {rec.source} in {ru} and {rf}: parameters of "
+            f"another kind of machine are applied as they are (fit this recording, or write its units in its header)")
 
 
 _BIG_RECORDING = 500_000  # rows from which a command says what each stage took
@@ -233,6 +247,8 @@ def cmd_diagnose(args) -> int:
     say_if_compiling()
     if args.params:
         params = _params(args.params, None)
+        if (warning := units_mismatch(args.params, params.units, rec)):
+            print(warning, file=sys.stderr)
     else:
         print("no --params: fitting the base model first", file=sys.stderr)
         try:
@@ -288,17 +304,20 @@ def cmd_fit(args) -> int:
     n = _positive_n(args.n)  # refused before any file is read
     outputs = Outputs({"--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
-    if not args.no_refine:
-        say_if_compiling()  # the refinement simulates
     base = _params(args.params, None) if args.params else None  # None: the fit says its held values are the paper's
     overrides = _threshold_items(args.threshold)
     from ..identify.segment import Thresholds
 
     Thresholds.checked(overrides)  # a bad setting is refused before any file is read
-    recs = [load_recording(_recording(path), columns=cols) for path in args.data]
+    # every fit finds its levels and branches in the position: a file without one is refused as it is read
+    recs = [load_recording(_recording(path), columns=cols, require=("time", "position")) for path in args.data]
     for r in recs:
         for note in r.notes:
             print(f"{r.source}: {note}", file=sys.stderr)
+        if base is not None and (warning := units_mismatch(args.params, base.units, r)):
+            print(warning, file=sys.stderr)
+    if not args.no_refine:
+        say_if_compiling()  # the refinement simulates
 
     try:
         res = fit_recordings(recs, base=base, n=n, fit_n=args.fit_n, progress=_progress, thresholds=overrides,

@@ -44,6 +44,10 @@ UNITS = {
     "nm_torque": (1.0, "N*m"), "n*m": (1.0, "N*m"), "n.m": (1.0, "N*m"), "n m": (1.0, "N*m"), "mnm": (1e-3, "N*m"),
     "m/s": (1.0, "m/s"), "mm/s": (1e-3, "m/s"), "um/s": (1e-6, "m/s"), "rad/s": (1.0, "rad/s"),
     "deg/s": (np.pi / 180, "rad/s"), "c": (1.0, "degC"), "degc": (1.0, "degC"), "°c": (1.0, "degC"), "k": (1.0, "K"),
+    # inch-pound (exact by definition: 1 in = 25.4 mm, 1 lbf = 0.45359237 kg × 9.80665 m/s²); a
+    # "lb" in a force or friction column is a pound-force
+    "in": (0.0254, "m"), "inch": (0.0254, "m"), "mil": (2.54e-5, "m"), "ft": (0.3048, "m"),
+    "lbf": (4.4482216152605, "N"), "lb": (4.4482216152605, "N"), "ozf": (4.4482216152605 / 16, "N"),
 }
 
 _KNOWN_NAMES = frozenset(a for names in ALIASES.values() for a in names)
@@ -74,13 +78,14 @@ _KIND = {"s": "time", "m": "length", "rad": "angle", "N": "force", "N*m": "torqu
          "rad/s": "angular speed", "degC": "temperature", "K": "temperature"}
 
 
-# a product's factors may be written with any of these between them (N·m, N*m, N.m, N m, N×m)
-_PRODUCT = re.compile(r"\s*[*·⋅.×]\s*|\s+")
+# a product's factors may be written with any of these between them (N·m, N*m, N.m, N m, N×m, N-m)
+_PRODUCT = re.compile(r"\s*[*·⋅.×-]\s*|\s+")
 # the single units a product or a quotient is made of, by kind (the lower-case keys of UNITS)
-_FORCE = ("n", "mn", "un", "µn", "kn")
-_LENGTH = ("m", "mm", "um", "µm", "nm")
-UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm; rad, mrad, urad, deg; N, mN, uN, kN; their products for a torque "
-                  "(N·m, N*m, N.m, mN·m, N·mm, Nmm, mNm) and quotients for a speed (mm/s, deg/s, rad/s); °C, K")
+_FORCE = ("n", "mn", "un", "µn", "kn", "lbf", "lb", "ozf")
+_LENGTH = ("m", "mm", "um", "µm", "nm", "in", "ft")
+UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm, in, mil, ft; rad, mrad, urad, deg; N, mN, uN, kN, lbf (lb), ozf; "
+                  "their products for a torque (N·m, N*m, N.m, N-m, mN·m, N·mm, Nmm, mNm, lbf·in, in-lb, lbf·ft) and "
+                  "quotients for a speed (mm/s, in/s, deg/s, rad/s); °C, K")
 
 
 def _single(word: str) -> tuple[float, str] | None:
@@ -201,6 +206,39 @@ def _listing(cols, most: int = 8) -> str:
     """Column names for a one-line message: the first ``most`` of a wide file, and how many more."""
     cols = list(cols)
     return ", ".join(cols[:most]) + (f" and {len(cols) - most} more" if len(cols) > most else "")
+
+
+# words of a column's name that say whether the machine is rotary or linear, for a header with no
+# unit (``_assume_si``): a column named 'force' is in N, one named 'torque' in N·m
+_ROTARY_WORDS = frozenset(("torque", "tau", "trq", "moment", "drehmoment", "angle", "theta", "q", "winkel", "omega",
+                           "qd"))
+_LINEAR_WORDS = frozenset(("force", "kraft", "f", "x", "displacement", "disp", "weg"))
+_SI_BY_KIND = {"rotary": {"position": "rad", "velocity": "rad/s", "force": "N*m", "friction": "N*m"},
+               "linear": {"position": "m", "velocity": "m/s", "force": "N", "friction": "N"}}
+
+
+def _assume_si(rec: "Recording", unitless: list) -> str:
+    """SI units for the signals ``unitless`` whose header gave none: those of a linear machine
+    (m, N) or a rotary one (rad, N·m), as the recording's other units or its column names say
+    (a unit given elsewhere wins over a name); rotary where nothing says. The note for the user."""
+    kinds = {k for sig, u in rec.units.items() for k, table in _SI_BY_KIND.items() if table.get(sig) == u}
+    why = "the units of its other columns"
+    if not kinds:
+        words = {w for sig in unitless for w in _split_header(rec.columns[sig])[0].split("_")}
+        kinds = {k for k, ws in (("rotary", _ROTARY_WORDS), ("linear", _LINEAR_WORDS)) if words & ws}
+        why = "the column names"
+    kind = kinds.pop() if len(kinds) == 1 else None
+    table = _SI_BY_KIND[kind or "rotary"]
+    for sig in unitless:
+        if sig in table:
+            rec.units[sig] = table[sig]
+    given = ", ".join(f"{rec.columns[s]} in {table[s]}" for s in unitless if s in table)
+    time = ["time in s"] if "time" in unitless else []
+    said = ", ".join(time + ([given] if given else []))
+    if kind:
+        return f"no unit in the header of {said}: assumed SI, a {kind} machine's (as {why} say)"
+    return (f"no unit in the header of {said}: assumed SI, a rotary machine's (nothing says linear or rotary: "
+            f"write the units in the header, e.g. 'position [m]', 'force [N]')")
 
 
 def _split_header(name: str) -> tuple[str, str | None]:
@@ -335,6 +373,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         )
 
     rec = Recording(time=np.empty(0), source=str(path))
+    unitless = []  # signals whose header gives no unit: SI assumed (``_assume_si``)
     for sig, col in mapping.items():
         if only is not None and sig not in only and sig not in require:
             # its values are not read (a gap there is no error), its unit is still the file's
@@ -349,8 +388,11 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         bad = np.flatnonzero(~np.isfinite(values))
         if len(bad):
             r = int(bad[0])
+            cell = raw.iloc[r]
+            what = ("is empty or NaN" if cell is None or (isinstance(cell, float) and np.isnan(cell)) or not str(cell).strip()
+                    else f"{str(cell)!r} is not a finite number")
             raise DataError(
-                f"{path}: column {col!r} row {r + 2}: {str(raw.iloc[r])!r} is not a finite number"
+                f"{path}: column {col!r} row {r + 2}: {what}"
                 + (f" ({len(bad)} such rows)" if len(bad) > 1 else "")
             )
         unit = (units or {}).get(sig) or headers[col][1]
@@ -367,9 +409,11 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 notes.append(f"{col}: converted from {unit} to {si}")
             rec.units[sig] = si
         elif sig != "temperature":
-            notes.append(f"{col}: no unit in the header, assumed SI")
+            unitless.append(sig)
         setattr(rec, sig, values)
         rec.columns[sig] = col
+    if unitless:
+        notes.append(_assume_si(rec, unitless))
     ignored = [c for c in in_file if c not in mapping.values()]
     rec.ignored = ignored
     rec.ambiguous = ambiguous

@@ -111,6 +111,13 @@ UNIT_KINDS = {
 }
 
 
+# the SI units a parameter set may be in, and the spellings taken for each (a torque as N·m, N*m, Nm)
+SI_UNITS = {"position": ("m", "rad"), "force": ("N", "N*m"), "time": ("s",)}
+_SI_SPELLINGS = {"position": {"m": "m", "rad": "rad"},
+                 "force": {"n": "N", "n*m": "N*m", "n·m": "N*m", "n.m": "N*m", "nm": "N*m", "n⋅m": "N*m"},
+                 "time": {"s": "s"}}
+
+
 @dataclass(frozen=True)
 class Units(_RecordMapping):
     """The units every number of a parameter set is in: those of the data it came from
@@ -126,6 +133,14 @@ class Units(_RecordMapping):
             if not isinstance(v, str) or not v.strip() or "\n" in v:
                 raise ParameterError(f"units.{f.name}: expected a unit name such as "
                                      f"{f.default!r}, got {v!r}")
+            # recordings are converted to SI when read, so a parameter set in any other unit
+            # would be applied to them unconverted: refused, not rescaled
+            si = _SI_SPELLINGS[f.name].get(v.strip().replace(" ", "").lower())
+            if si is None:
+                raise ParameterError(f"units.{f.name}: {v!r} is not an SI unit; parameter sets are in SI "
+                                     f"({' or '.join(SI_UNITS[f.name])}), as recordings are once read: "
+                                     f"convert the numbers and write the SI unit")
+            object.__setattr__(self, f.name, si)
 
     @classmethod
     def coerce(cls, value) -> "Units":

@@ -155,3 +155,29 @@ def test_cli_missing_column_is_one_line(tmp_path, capsys):
     assert rc == 2
     assert "no column for position" in err and len(err.strip().splitlines()) == 1
     assert not (tmp_path / "o.csv").exists()
+
+
+def test_cli_warns_when_the_parameters_are_of_another_kind_of_machine(tmp_path, capsys):
+    # the paper's joint (rad, N·m) simulated along a linear stage's logged motion (mm): it runs,
+    # and says so on one line naming both files
+    t = np.arange(0, 1, 1e-3)
+    rec = tmp_path / "stage.csv"
+    pd.DataFrame({"time [s]": t, "position [mm]": 2.0 * np.sin(3 * t)}).to_csv(rec, index=False)
+    par = tmp_path / "joint.yaml"
+    save_params(default_params(), par)
+    rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "displacement", "--params", par,
+                     "--out", tmp_path / "o.csv")
+    assert rc == 0, err
+    line = [ln for ln in err.splitlines() if ln.startswith("warning:") and "another kind of machine" in ln]
+    assert len(line) == 1 and "joint.yaml" in line[0] and "stage.csv" in line[0] and "rad" in line[0]
+
+
+def test_cli_fit_names_a_missing_position_column_before_any_work(tmp_path, capsys):
+    t = np.arange(0, 1, 1e-3)
+    rec = tmp_path / "f.csv"
+    pd.DataFrame({"time [s]": t, "positon [mm]": t, "force [N]": np.cos(t)}).to_csv(rec, index=False)
+    rc, out, err = cli(capsys, "fit", rec, "--out", tmp_path / "f.yaml")
+    assert rc != 0 and not (tmp_path / "f.yaml").exists()
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error: ")
+    assert "f.csv" in lines[0] and "position" in lines[0] and "--columns position=" in lines[0]
