@@ -255,7 +255,10 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
             why = (f"δ not determined by the levels, and with δ anywhere in {DELTA_RANGE[0]:g}–{DELTA_RANGE[1]:g} "
                    f"neither is {', '.join(n for n in bad2 if n not in ('Fs', 'vs'))} (σ > half the value)")
         else:
-            why = (f"only {below} level(s) below the Stribeck velocity" if below < 2
+            # the v_s the count is against (the Stribeck fit's, which lies below every level when
+            # the levels show no dip the curve can follow, e.g. friction that drifted between them)
+            why = (f"only {below} level(s) below the Stribeck velocity v_s = {abs(fit.values['vs']):.3g} the Stribeck "
+                   f"fit put (levels from {np.min(a):.3g})" if below < 2
                    else f"{', '.join(bad)} not determined by the levels (σ > half the value, a bound or a negative variance)")
     else:
         why = (f"only {speeds} distinct speed(s) in {k} level(s) on this side; the Stribeck curve needs at least "
