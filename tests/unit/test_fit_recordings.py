@@ -318,17 +318,35 @@ def test_presliding_shorter_than_an_encoder_step_holds_the_curve_and_still_fits_
             assert abs(getattr(st, k) - t) < 3 * sd + 0.01 * abs(t), (side, k, getattr(st, k), t, sd)
 
 
-def _stage_csv(path, position_unit: str, scale: float, I: float = 0.8, kp: float = 40.0):
+def _stage_csv(path, position_unit: str, scale: float, I: float = 0.8, kp: float = 40.0, force_unit: str = "N",
+               force_scale: float = 1.0):
     """A slide under a velocity loop (integrated in tests/unit/plants.py, not by the product),
-    its position from a 1 µm scale, written with the position in ``position_unit``."""
+    its position from a 1 µm scale, written with the position in ``position_unit`` (the metres
+    times ``scale``) and the force in ``force_unit`` (the newtons times ``force_scale``)."""
     from tests.unit.plants import velocity_loop
 
     t, x, _, f = velocity_loop(I, lambda v: 2.0 * np.tanh(v / 1e-3) + 5.0 * v,
                                [0.05, -0.05, 0.2, -0.2, 0.6, -0.6, 0.1, -0.1] * 2, 1500, kp=kp)
     q = np.round(x / 1e-6) * 1e-6
-    path.write_text(f"time [s],position [{position_unit}],force [N]\n"
-                    + "".join(f"{a:.4f},{b * scale:.10g},{c:.6g}\n" for a, b, c in zip(t, q, f)))
+    path.write_text(f"time [s],position [{position_unit}],force [{force_unit}]\n"
+                    + "".join(f"{a:.4f},{b * scale:.10g},{c * force_scale:.10g}\n" for a, b, c in zip(t, q, f)))
     return path
+
+
+def test_the_same_slide_logged_in_inches_and_pound_force_gives_the_same_physics(tmp_path):
+    # 1 in = 25.4 mm and 1 lbf = 4.4482216152605 N exactly: the same S(v) and mass in SI
+    lbf = 0.45359237 * 9.80665
+    si = fit_recordings([load_recording(_stage_csv(tmp_path / "slide_m.csv", "m", 1.0))], refine=False)
+    ip = fit_recordings([load_recording(_stage_csv(tmp_path / "slide_in.csv", "in", 1 / 0.0254, force_unit="lbf",
+                                                   force_scale=1 / lbf))], refine=False)
+    assert ip.params.units == si.params.units and si.params.units.position == "m"
+    for side in ("positive", "negative"):
+        a, b = getattr(si.params.stribeck, side), getattr(ip.params.stribeck, side)
+        assert b.Fc == pytest.approx(a.Fc, rel=1e-5) and b.sigma2 == pytest.approx(a.sigma2, rel=1e-5)
+        assert abs(a.Fc) == pytest.approx(2.0, rel=0.05)  # the slide's 2 N of Coulomb friction
+    # the file's 10 digits of a non-decimal conversion move the inertia by parts in 10⁴: nothing
+    # beside its σ
+    assert abs(ip.params.inertia - si.params.inertia) < 0.01 * si.params.uncertainty["inertia"]
 
 
 def test_an_inertia_read_too_loosely_is_held_at_the_reading_not_the_default(tmp_path, monkeypatch):
