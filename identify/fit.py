@@ -335,7 +335,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         raise IdentificationError(f"friction sign: one of auto, action, reaction; got {friction_sign!r}")
     if not recordings:
         raise IdentificationError("nothing to fit: no recordings given")
-    p = base or default_params()
+    # the starting set gives values only: every σ written is this fit's (a value kept from it is
+    # held, named so, and has none)
+    p = (base or default_params()).replace(uncertainty={})
     # what is held comes from the file the user gave, or else from the paper's robot joint,
     # whose values mean nothing for another machine: the report says which
     start = ("from the starting parameter file" if base is not None else
@@ -588,8 +590,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         if tfit.n_stderr is not None:
             unc["n"] = tfit.n_stderr
 
-    res = FitResult(p, stribeck_fit, tfit, levels, n_br, notes, datasets, {pr.source: pr.th for pr in preps}, held,
-                    decisions)
+    # the refinement starts from this fit's σ (a parameter it cannot move keeps them)
+    res = FitResult(p.replace(uncertainty=unc), stribeck_fit, tfit, levels, n_br, notes, datasets,
+                    {pr.source: pr.th for pr in preps}, held, decisions)
     if refine:
         try:
             from .refine import refine_fit

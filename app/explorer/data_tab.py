@@ -112,12 +112,14 @@ class DataTab:
                 ctx.session.recording_name, ctx.session.recording_bytes = f.name, f.content
                 ctx.session.mapping = {}
                 ctx.session.flip_friction = None
+                ctx.dirty = True  # saved with the session now, not at the next redraw: a reload keeps it
             self.job.submit("load", True)
 
         @self.gui_remap.on_click
         def _(_) -> None:
             with ctx.lock:  # "(none)" is a choice too: that signal from no column, not the one recognised
                 ctx.session.mapping = {s: (None if h.value == NONE else h.value) for s, h in self.gui_map.items()}
+                ctx.dirty = True
             self.job.submit("load", True)
 
         @self.gui_flip.on_update
@@ -285,7 +287,7 @@ class DataTab:
         progress = self.job.progress_for(report)
         before = ctx.params
         try:
-            res = fit_recordings([rec], base=before.replace(model="leuven"), progress=progress, friction_sign="action")
+            res = fit_recordings([rec], base=fit_start(before, rec), progress=progress, friction_sign="action")
         except Cancelled:
             self.gui_status.content = f"Fit of {name} cancelled."
             self._busy(False)
@@ -306,8 +308,28 @@ class DataTab:
         self._show_recording(rec, res.levels, self.sign_note, fit=res)
         self.gui_report.content = f"**Fit of {name}**\n\n```\n{res.report()}\n```"
         gap_b, gap_a = gap(rec, before), gap(rec, res.params.replace(model=before.model))
-        self.propose(Proposal(f"fit of {name}", res.params.replace(model=before.model), fit_summary(res), gap_b, gap_a))
+        # a header without units was read as SI: said where the numbers are accepted, not only in the Data tab
+        assumed = "".join(f"⚠ {name}: {n}\n\n" for n in rec.notes if "assumed SI" in n)
+        self.propose(Proposal(f"fit of {name}", res.params.replace(model=before.model), assumed + fit_summary(res),
+                              gap_b, gap_a))
         self.gui_status.content = f"Fit of **{name}** done: see the proposal."
+
+
+def fit_start(current, rec: Recording):
+    """The parameter set a fit of ``rec`` starts from (what it holds comes from there): the
+    explorer's current set, unless that is the built-in default — the paper's robot joint, whose
+    σ1 and inertia mean nothing for another machine — or in other units than the recording (rad
+    against m); then none, as ``leuven-friction fit`` without --params: σ1 and the inertia are
+    then held at the recording's own scale."""
+    from ...model import default_params
+
+    if current == default_params(current.model):
+        return None
+    start = current.replace(model="leuven")
+    ru = rec.units.get("position")
+    if ru is not None and ru != start.units.position:
+        return None
+    return start
 
 
 def measured_friction(rec: Recording, p) -> np.ndarray:
@@ -352,7 +374,9 @@ def fit_summary(res) -> str:
         lines.append("**Estimated**: " + ", ".join(
             [w for w, ok in (("S(v)", res.stribeck_fit), ("transition curve", res.transition_fit)) if ok] or ["nothing"]))
     if held:
-        lines.append(f"**Held** ({len(held)}) at the current values:\n" + "\n".join(f"- {k}: {_no_cli(r)}" for k, r in held.items()))
+        # each at the value its reason says (the current one, F_c, the slowest level's speed, …)
+        lines.append(f"**Held** ({len(held)}), each as its reason says:\n"
+                     + "\n".join(f"- {k}: {_no_cli(r)}" for k, r in held.items()))
     elif not res.stribeck_fit or not res.transition_fit:
         lines.append("**Held**: " + ", ".join(w for w, ok in (("S(v)", res.stribeck_fit),
                                                               ("transition curve", res.transition_fit)) if not ok))

@@ -231,6 +231,11 @@ class SetsTab:
             u = str(prop.params.units.get("force", "")).replace("*", "·")
             gap = (f"\n\n**Gap** (RMS measured − model): {prop.gap_before:.4g} {u} now → "
                    f"**{prop.gap_after:.4g} {u}** with the proposal")
+            if prop.gap_after > prop.gap_before:
+                # a fit can be worse along the whole record than a set tuned to it (a fit's S(v)
+                # and curve come from the levels and branches alone): said before it is accepted
+                gap += (f"\n\n⚠ The proposal leaves a larger gap along this recording than the current set "
+                        f"({prop.gap_after / prop.gap_before:.2g}×): look at the plots before accepting it.")
         self.gui_prop_text.content = (f"**{prop.label}**{gap}\n\n{prop.text}\n\n"
                                       + compare_table(ctx.params, prop.params, "current", "proposed"))
         self.gui_proposal.visible = True

@@ -490,3 +490,23 @@ def test_presliding_ramps_of_a_robot_joint_give_a_transition_curve():
     z = np.asarray(curve.z)
     inner = z <= 0.6 * z[-1]
     np.testing.assert_allclose(np.asarray(curve.F)[inner][1:], truth.transition_curve(z[inner])[1:], rtol=0.35)
+
+
+def test_a_fit_started_from_a_parameter_file_writes_its_own_uncertainties(tmp_path):
+    # every σ written is the fit's own: the starting file's σ (here 123 on everything) are
+    # neither kept for what the fit estimates again nor given to what it holds
+    # (with the output-error refinement, which used to start from the file's σ and keep them:
+    # a ball-screw simulated apart, whose force ramps it simulates along)
+    from synth import ballscrew
+
+    t, x, f, _ = ballscrew.simulate(0.0, 11)
+    path = tmp_path / "screw.csv"
+    ballscrew.write(path, t, x, f, "mm")
+    alone = fit_recordings([load_recording(path)])
+    assert alone.refinement["done"]
+    start = alone.params.replace(uncertainty={k: 123.0 for k in alone.params.uncertainty} | {"sigma1": 123.0})
+    again = fit_recordings([load_recording(path)], base=start)
+    assert 123.0 not in again.params.uncertainty.values(), again.params.uncertainty
+    assert not set(again.held) & set(again.params.uncertainty)
+    for k in ("stribeck.positive.Fc", "stribeck.negative.sigma2"):
+        assert 0.5 < again.params.uncertainty[k] / alone.params.uncertainty[k] < 2.0, k
