@@ -114,7 +114,8 @@ UNIT_KINDS = {
 # the SI units a parameter set may be in, and the spellings taken for each (a torque as N·m, N*m, Nm)
 SI_UNITS = {"position": ("m", "rad"), "force": ("N", "N*m"), "time": ("s",)}
 _SI_SPELLINGS = {"position": {"m": "m", "rad": "rad"},
-                 "force": {"n": "N", "n*m": "N*m", "n·m": "N*m", "n.m": "N*m", "nm": "N*m", "n⋅m": "N*m"},
+                 "force": {"n": "N", "n*m": "N*m", "n·m": "N*m", "n.m": "N*m", "nm": "N*m", "n⋅m": "N*m", "n-m": "N*m",
+                           "n×m": "N*m"},
                  "time": {"s": "s"}}
 
 
