@@ -57,9 +57,11 @@ def test_a_control_names_nothing_and_a_drift_is_named(tmp_path):
     assert rep["effects"] == ["time_drift"], rep["effects"]
     alternative, written = rep["steps"][1]["rms"], rep["steps"][2]["rms"]
     assert written < 0.7 * alternative, (alternative, written)
-    # the friction grew by 15 % over the session, linearly: the drift's first-order law
-    # 1 + b·(1 − e^(−t/τ)) reaches about that by the session's end
+    # the friction grew by 15 % over the session, linearly: from the first sample compared (t0)
+    # to the session's end, (1 + 0.15·t_end/T)/(1 + 0.15·t0/T); the drift's first-order law
+    # 1 + b·(1 − e^(−(t − t0)/τ)) reaches that within a fifth of the change
     p = rep["steps"][2]["params"]
     t_end = float(np.loadtxt(drifting, delimiter=",", skiprows=1, usecols=0)[-1])
-    reached = p["b"] * (1.0 - np.exp(-t_end / p["tau"]))
-    assert 0.10 < reached < 0.20, (p, t_end, reached)
+    truth = (1 + 0.15) / (1 + 0.15 * p["t0"] / t_end) - 1
+    reached = p["b"] * (1.0 - np.exp(-(t_end - p["t0"]) / p["tau"]))
+    assert abs(reached - truth) < 0.2 * truth, (p, t_end, reached, truth)
