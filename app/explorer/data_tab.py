@@ -181,9 +181,11 @@ class DataTab:
             with ctx.lock:
                 ctx.recording, ctx.fit = None, None
             self.gui_status.content = f"⚠ {msg}"
+            # a bad cell is the file's to correct; a column not found or not told apart is chosen here
+            fix = ("Correct that row of the file (or remove it) and upload it again." if re.search(r"\brow \d+", msg)
+                   else "Choose the columns under *Columns* below and press *Apply columns*.")
             self.gui_info.content = (f"**{name}** could not be read: {msg}\n\nColumns in the file: "
-                                     + ", ".join(f"`{c}`" for c in self.columns)
-                                     + "\n\nChoose the columns under *Columns* below and press *Apply columns*.")
+                                     + ", ".join(f"`{c}`" for c in self.columns) + f"\n\n{fix}")
             self.gui_columns.visible = True
             self.gui_plot.visible = self.gui_csv.visible = False
             self.gui_fit.disabled = True
