@@ -166,8 +166,10 @@ def default_params_warning(param_units: dict, rec_units: dict) -> str:
     numbers are another machine's — in other units too, when the recording's differ."""
     line = ("no --params: simulated with the built-in default, the paper's KUKA IR 361 axis 1 (give --params with "
             "this machine's parameters, e.g. from `fit`)")
-    pu, ru = param_units.get("position"), rec_units.get("position")
-    if pu and ru and pu != ru:
+    from ..identify.data import other_kind_of_machine
+
+    if other_kind_of_machine(param_units, rec_units):
+        pu, ru = param_units.get("position"), rec_units.get("position")
         line += (f"; its parameters are in {pu}, {param_units.get('force')}, the recording in {ru}, "
                  f"{rec_units.get('force') or rec_units.get('friction') or '?'}: the friction is not of this scale")
     return line
@@ -177,9 +179,11 @@ def units_mismatch(path: str, param_units: dict, rec) -> str | None:
     """A warning where a parameter file and a recording are of different kinds of machine (one in
     m and N, the other in rad and N·m): the numbers would be applied to the recording as they
     are. Said, not refused: a header without units is read as SI of the kind its names suggest."""
-    pu, ru = param_units.get("position"), rec.units.get("position")
-    if not (pu and ru and pu != ru):
+    from ..identify.data import other_kind_of_machine
+
+    if not other_kind_of_machine(param_units, rec.units):
         return None
+    pu, ru = param_units.get("position"), rec.units.get("position")
     rf = rec.units.get("force") or rec.units.get("friction") or "?"
     return (f"warning: {path} is in {pu} and {param_units.get('force')}, {rec.source} in {ru} and {rf}: parameters of "
             f"another kind of machine are applied as they are (fit this recording, or write its units in its header)")

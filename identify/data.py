@@ -182,6 +182,7 @@ class Recording:
     columns: dict = field(default_factory=dict)  # signal -> column name in the file
     units: dict = field(default_factory=dict)  # signal -> SI unit
     notes: list = field(default_factory=list)  # what was assumed or converted
+    units_assumed: str = ""  # the note of ``_assume_si`` where a header gave no unit (also in ``notes``)
     ignored: list = field(default_factory=list)  # the file's columns no signal was taken from
     ambiguous: dict = field(default_factory=dict)  # signal -> columns whose names could each be it
 
@@ -413,7 +414,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         setattr(rec, sig, values)
         rec.columns[sig] = col
     if unitless:
-        notes.append(_assume_si(rec, unitless))
+        rec.units_assumed = _assume_si(rec, unitless)
+        notes.append(rec.units_assumed)
     ignored = [c for c in in_file if c not in mapping.values()]
     rec.ignored = ignored
     rec.ambiguous = ambiguous
@@ -436,6 +438,13 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             f"(previous {raw.iloc[r - 1]}); sort the file or remove repeated rows"
         )
     return rec
+
+
+def other_kind_of_machine(param_units, rec_units) -> bool:
+    """Whether a parameter set's units and a recording's are of different kinds of machine (one
+    in rad, the other in m): its numbers would be applied to the recording as they are."""
+    pu, ru = param_units.get("position"), rec_units.get("position")
+    return bool(pu and ru and pu != ru)
 
 
 def velocity_of(rec: Recording) -> np.ndarray:

@@ -15,7 +15,7 @@ import re
 import numpy as np
 import viser
 
-from ...identify.data import SIGNALS, Recording, load_recording, velocity_of
+from ...identify.data import SIGNALS, Recording, load_recording, other_kind_of_machine, velocity_of
 from ...identify.errors import DataError
 from ...model.errors import FrictionError
 from .. import plots
@@ -311,7 +311,7 @@ class DataTab:
         self.gui_report.content = f"**Fit of {name}**\n\n```\n{res.report()}\n```"
         gap_b, gap_a = gap(rec, before), gap(rec, res.params.replace(model=before.model))
         # a header without units was read as SI: said where the numbers are accepted, not only in the Data tab
-        assumed = "".join(f"⚠ {name}: {n}\n\n" for n in rec.notes if "assumed SI" in n)
+        assumed = f"⚠ {name}: {rec.units_assumed}\n\n" if rec.units_assumed else ""
         self.propose(Proposal(f"fit of {name}", res.params.replace(model=before.model), assumed + fit_summary(res),
                               gap_b, gap_a))
         self.gui_status.content = f"Fit of **{name}** done: see the proposal."
@@ -325,13 +325,9 @@ def fit_start(current, rec: Recording):
     then held at the recording's own scale."""
     from ...model import default_params
 
-    if current == default_params(current.model):
+    if current == default_params(current.model) or other_kind_of_machine(current.units, rec.units):
         return None
-    start = current.replace(model="leuven")
-    ru = rec.units.get("position")
-    if ru is not None and ru != start.units.position:
-        return None
-    return start
+    return current.replace(model="leuven")
 
 
 def measured_friction(rec: Recording, p) -> np.ndarray:
