@@ -146,13 +146,15 @@ class Comparison:
     inertial_noise: float = 0.0  # friction from an applied force: the sd the inertial term I·Δv/T adds
     inertia: float | None = None  # friction from an applied force: the I of eq. (8) it was taken with
     input_noise: np.ndarray | None = None  # the model's friction noise from the position it is driven by
+    noise_colour: float = 1.0  # the averaged log's noise over what white noise would leave (``noise_colour``)
 
     def noise_on(self, mask: np.ndarray) -> float:
         """The noise floor from the samples of ``mask`` alone (a recording's noise need not be
         the same in every regime: a force sensor in presliding and in fast sliding, or parts
         logged by different sensors): the log's, from sample-to-sample differences of ``raw``
-        through the averaging of eq. (8) and its inertial term, and what the position noise
-        carries through the model (``input_noise``, once known)."""
+        through the averaging of eq. (8) (times ``noise_colour`` where that noise is not white)
+        and its inertial term, and what the position noise carries through the model
+        (``input_noise``, once known)."""
         if self.raw is None:
             return self.noise
         both = mask[1:] & mask[:-1]
@@ -160,7 +162,7 @@ class Comparison:
             return float("nan")
         sd = _mad_sd(np.diff(self.raw)[both]) / math.sqrt(2.0)
         carried = float(np.mean(self.input_noise[mask] ** 2)) if self.input_noise is not None else 0.0
-        return math.sqrt(sd**2 / self.average + self.inertial_noise**2 + carried)
+        return math.sqrt((sd * self.noise_colour) ** 2 / self.average + self.inertial_noise**2 + carried)
 
     def log_noise(self) -> float:
         """``noise_on`` over every sample, before the carried part is added."""
@@ -218,6 +220,72 @@ def _blockwise_sd(d: np.ndarray) -> float:
     if nb < 2:
         return _mad_sd(d)
     return float(np.percentile([_mad_sd(b) for b in np.array_split(d, nb)], NOISE_QUANTILE))
+
+
+COLOUR_SHOWN = 1.5  # at an eighth of the averaging, noise this much above white counts as coloured
+COLOUR_DETECTION = 8  # … blocks of 1/8 of the averaging: short against the force's own changes at rest
+COLOUR_MIN_BLOCKS = 30  # third differences of block means a ratio is taken over, at least
+
+
+@dataclass
+class NoiseColour:
+    """How much noisier a log averaged over ``average`` samples is than white noise of the same
+    sample-to-sample sd would leave it (``factor``; 1 where that is not shown), measured where
+    the machine rests: at an eighth of the averaging (``shown``, from ``blocks`` block means),
+    which decides, and at the averaging itself (``at_average``), which sizes it."""
+
+    factor: float
+    shown: float
+    at_average: float
+    blocks: int
+    average: int
+
+    def note(self) -> str:
+        return (f"the log's noise is coloured: averaged over {self.average} samples it is {self.factor:.3g} times what "
+                f"white noise of the same sample-to-sample sd would leave ({self.shown:.3g} times over "
+                f"{self.average // COLOUR_DETECTION} samples, {self.blocks} blocks at rest); the noise floor counts it")
+
+
+def _averaged_over_white(raw: np.ndarray, rest: np.ndarray, block: int) -> tuple[float, int]:
+    """(sd of ``raw`` averaged over ``block`` samples / its white-noise value sd_Δ/√2/√block,
+    third differences counted), from the means of consecutive blocks inside each run of
+    ``rest``; third differences (variance 20·σ_m² for independent means) remove whatever the
+    force does there up to quadratically in time (a ramp, a slow swing)."""
+    edges = np.diff(np.concatenate([[0], rest.astype(np.int8), [0]]))
+    d3 = []
+    for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):
+        n = (b - a) // block
+        if n >= 4:
+            d3.append(np.diff(raw[a:a + n * block].reshape(n, block).mean(axis=1), 3))
+    count = sum(map(len, d3))
+    both = rest[1:] & rest[:-1]
+    white = _mad_sd(np.diff(raw)[both]) / math.sqrt(2.0 * block) if both.sum() >= 20 else 0.0
+    if count < COLOUR_MIN_BLOCKS or white <= 0.0:
+        return float("nan"), count
+    return _mad_sd(np.concatenate(d3)) / math.sqrt(20.0) / white, count
+
+
+def noise_colour(raw: np.ndarray, rest: np.ndarray, average: int) -> NoiseColour:
+    """The noise of ``raw`` averaged over ``average`` samples, against the white-noise value sd/√L.
+
+    Sample-to-sample differences see only the noise's fast part. A sensor whose noise is
+    correlated over many samples (a filtered torque estimate, an AR(1) disturbance) keeps most
+    of its variance through the average of eq. (8), and a floor taken as white would be several
+    times too low. Measured where the machine rests (|v| < v_rest), where neither a ripple along
+    the position nor the motion's transitions enter. Decided over blocks of an eighth of the
+    averaging, short against anything the force itself does at rest: over the whole averaging
+    the presliding cycles of the project's robot joints (white noise) read 1.5–8 times white,
+    over an eighth 0.93–1.00; an AR(1) torque (ρ = 0.96) 2.0–2.7 times."""
+    L = int(average)
+    short = L // COLOUR_DETECTION
+    if short < 2:
+        return NoiseColour(1.0, float("nan"), float("nan"), 0, L)
+    shown, blocks = _averaged_over_white(raw, rest, short)
+    at_l, _ = _averaged_over_white(raw, rest, L)
+    if not shown >= COLOUR_SHOWN:
+        return NoiseColour(1.0, shown, at_l, blocks, L)
+    # sized at the averaging itself where enough of it rests; else what the shorter blocks show
+    return NoiseColour(max(shown, at_l) if np.isfinite(at_l) else shown, shown, at_l, blocks, L)
 
 
 def smoothing_window(x: np.ndarray, dt: float, sd: float) -> int:
@@ -607,6 +675,10 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, f, 0.0, sdx, w, min_exc, v_rest, notes=notes,
                       average=L, acceleration=mean_acceleration(vel, t, L), raw=f,
                       inertial_noise=math.sqrt(2.0) * inertia * v_noise / ((L - 1) * dt), inertia=inertia)
+    colour = noise_colour(f, np.abs(vel) < v_rest, L)
+    cmp_.noise_colour = colour.factor
+    if colour.factor > 1.0:
+        notes.append(colour.note())
     cmp_.noise = cmp_.log_noise()
     notes.append(f"compared in friction, taken from the applied force by eq. (8) averaged over {L} samples "
                  f"({L * dt:.3g} s): mean force − I·Δv/T (the inertial term in integral form, the position "

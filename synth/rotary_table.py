@@ -36,6 +36,8 @@ ENC = 2 * math.pi / 2 ** 20    # rad per count
 DT = 1e-4
 CTRL_EVERY = 2
 LOG_EVERY = 10
+TORQUE_WHITE = 0.0023         # N m, white part of the torque noise
+TORQUE_AR_E, TORQUE_AR = 0.0009, 0.96   # N m innovation and coefficient of its AR(1) part
 LEVELS = [0.0031, 0.0068, 0.0147, 0.0322, 0.0705, 0.154, 0.338, 0.741, 1.62]
 
 
@@ -187,10 +189,10 @@ def simulate(seed, load=None, alpha=0.0, n0=1.0, ripple=None, drift=None, out=No
     t_ms = logs[:, 0] * 1e3
     ang_deg = np.floor(logs[:, 1] / ENC) * ENC * 180 / math.pi
     ar = np.zeros(li)
-    e = rng.normal(0, 0.0009, li)
+    e = rng.normal(0, TORQUE_AR_E, li)
     for i in range(1, li):
-        ar[i] = 0.96 * ar[i - 1] + e[i]
-    torque_mNm = (logs[:, 2] + rng.normal(0, 0.0023, li) + ar) * 1e3
+        ar[i] = TORQUE_AR * ar[i - 1] + e[i]
+    torque_mNm = (logs[:, 2] + rng.normal(0, TORQUE_WHITE, li) + ar) * 1e3
     cols = [t_ms, ang_deg, torque_mNm]
     header = ["t [ms]", "angle [deg]", "motor_torque [mN*m]"]
     if Nsub is not None:

@@ -19,6 +19,7 @@ from leuven_friction.identify.diagnose import (
     gross_sliding,
     mean_acceleration,
     model_nuisance,
+    noise_colour,
     speed_order,
     stroke_order,
     steady_sliding,
@@ -768,3 +769,37 @@ def test_a_longer_window_set_by_the_user_reads_slow_sliding_a_short_one_takes_fo
     both = motion_reading(rec, {"window": W, "v_rest": 1e-3, "min_excursion": 2e-4})
     assert both.v_rest == 1e-3 and both.min_excursion == 2e-4
     assert "|v| < 0.001 (set)" in both.note() and "0.0002 (set) of back-travel" in both.note()
+
+
+def _ar1_mean_sd(sd_e: float, rho: float, L: int) -> float:
+    """sd of the mean of L consecutive samples of AR(1) noise x_k = ρ·x_{k−1} + e_k."""
+    k = np.arange(1, L)
+    g0 = sd_e**2 / (1.0 - rho**2)
+    return math.sqrt(g0 / L * (1.0 + 2.0 * np.sum((1.0 - k / L) * rho**k)))
+
+
+def test_noise_colour_is_the_averaged_noise_of_correlated_noise_over_that_of_white():
+    rng = np.random.default_rng(4)
+    n, L, rho, sd_e, sd_w = 60_000, 100, 0.96, 1.0, 2.0
+    ar = np.zeros(n)
+    e = rng.normal(0.0, sd_e, n)
+    for i in range(1, n):
+        ar[i] = rho * ar[i - 1] + e[i]
+    t = np.arange(n) * 1e-3
+    # a stuck contact under torque ramps: the force a triangle wave in time, the machine at rest
+    ramp = 50.0 * np.abs(((t / 7.0) % 2.0) - 1.0)
+    rest = np.ones(n, bool)
+    rest[20_000:20_500] = False  # a stroke between the rests
+    white_noise = ramp + rng.normal(0.0, sd_w, n)
+    coloured = white_noise + ar
+    assert noise_colour(white_noise, rest, L).factor == 1.0
+    # a force that swings at rest within a few averaging lengths (presliding cycles) is not noise
+    swing = 30.0 * np.sin(2 * np.pi * t / 0.35) * (1.0 + 0.5 * np.sin(2 * np.pi * t / 1.3))
+    assert noise_colour(swing + rng.normal(0.0, sd_w, n), rest, L).factor == 1.0
+    c = noise_colour(coloured, rest, L)
+    # white noise of the same sample-to-sample sd: var(Δ)/2 = sd_w² + γ0(1 − ρ)
+    white_equivalent = math.sqrt(sd_w**2 + sd_e**2 / (1.0 - rho**2) * (1.0 - rho)) / math.sqrt(L)
+    expected = math.sqrt(sd_w**2 / L + _ar1_mean_sd(sd_e, rho, L) ** 2) / white_equivalent
+    assert c.factor == pytest.approx(expected, rel=0.15), (c, expected)
+    # nothing at rest long enough for four blocks: nothing is claimed
+    assert noise_colour(coloured, np.zeros(n, bool), L).factor == 1.0
