@@ -95,12 +95,13 @@ def scores(rows) -> dict:
             "shrink_free_below_30pct": sum(s < 0.3 for s in shrink_free)}
 
 
-def truth_comparable(name: str, truth: dict, duration: float) -> dict:
+def truth_comparable(name: str, truth: dict, duration: float, t0: float = 0.0) -> dict:
     """The generator's values (``synth.hidden``) that mean the same as a candidate's parameter:
     the load exponent; the ripple's wavelength and harmonic amplitudes; for the drift, the
-    candidate's own law 1 + b·(1 − e^{−t/τ}) fitted to the generator's exp(−β·ΔT·(1 − e^{−t/τ_T}))
-    over the session's ``duration`` without noise (exponential in the temperature, its best τ
-    is 6–25 % off τ_T at the suite's β). A softening's hyperbola has no parameter an
+    candidate's own law 1 + b·(1 − e^{−(t−t0)/τ}) fitted without noise, from the drift's start
+    ``t0`` (the first sample compared) to the session's ``duration``, to the generator's
+    exp(−β·ΔT·(1 − e^{−t/τ_T})) relative to its value at t0 (exponential in the temperature, its
+    best τ is 6–25 % off τ_T at the suite's β). A softening's hyperbola has no parameter an
     exponential's means."""
     if name == "normal_load":
         return {"alpha": truth["alpha"]}
@@ -109,10 +110,11 @@ def truth_comparable(name: str, truth: dict, duration: float) -> dict:
     if name == "time_drift":
         from scipy.optimize import least_squares
 
-        t = np.linspace(0.0, duration, 400)
-        law = np.exp(-truth["beta_dT"] * -np.expm1(-t / truth["tau_T"]))
-        sol = least_squares(lambda q: 1.0 + q[0] * -np.expm1(-t / math.exp(q[1])) - law,
-                            [math.expm1(-truth["beta_dT"]), math.log(truth["tau_T"])])
+        gen = lambda t: np.exp(-truth["beta_dT"] * -np.expm1(-t / truth["tau_T"]))  # noqa: E731
+        t = np.linspace(t0, duration, 400)
+        law = gen(t) / gen(t0)
+        sol = least_squares(lambda q: 1.0 + q[0] * -np.expm1(-(t - t0) / math.exp(q[1])) - law,
+                            [law[-1] - 1.0, math.log(truth["tau_T"])])
         return {"b": float(sol.x[0]), "tau": float(math.exp(sol.x[1]))}
     return {}
 
@@ -126,7 +128,8 @@ def sd_calibration(rows) -> dict:
         for fit in r.get("effect_fits", []):
             if fit["name"] not in r.get("truth", {}):
                 continue
-            for k, v in truth_comparable(fit["name"], r["truth"][fit["name"]], r["duration"]).items():
+            t0 = fit["params"].get("t0", 0.0)
+            for k, v in truth_comparable(fit["name"], r["truth"][fit["name"]], r["duration"], t0).items():
                 sd = fit["sd"].get(k)
                 if sd and k in fit["params"]:
                     z.setdefault(f"{fit['name']}.{k}", []).append(abs(fit["params"][k] - v) / sd)

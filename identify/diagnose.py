@@ -1898,6 +1898,26 @@ def jackknife_sd(full: float, folds, *, angle: bool = False) -> float:
     return float(math.sqrt((k - 1) / k * np.sum((d - d.mean()) ** 2))) if k >= 2 else float("nan")
 
 
+def with_model_shift(sd: dict, decided: dict, written: dict) -> dict:
+    """σ of an effect's written parameters: the folds' jackknife σ (``effect_sds``, of the
+    values ``decided`` beside the free steady curve) and, in quadrature, how far the model
+    written moved each value from there (refitted without that curve, n, σ1 and S(v) take up
+    part of what the curve held, and the effect moves with them). The jackknife sees only the
+    data's part; the shift is a sample of the model's own (on the rotary table made apart, a
+    ripple's phase was decided at 1.118 ± 0.007 and written at 1.197, the truth 1.13). A
+    phase's shift is wrapped to (−π, π]."""
+    out = {}
+    for k, v in sd.items():
+        if k in decided and k in written and math.isfinite(v):
+            d = written[k] - decided[k]
+            if k.startswith("phase"):
+                d = math.remainder(d, 2.0 * math.pi)
+            out[k] = math.hypot(v, d)
+        else:
+            out[k] = v
+    return out
+
+
 def effect_sds(terms: list, full: list, folds: list, named) -> dict:
     """{effect: {parameter: σ}} for the named effects among ``terms``: each free parameter's
     jackknife σ (``jackknife_sd``) over the cross-validation's leave-one-fold-out refits
@@ -2515,6 +2535,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     scored = [pred_given + engine.nuisance(r0, allm, pred_given), null.pred]
     named = []
     sds = {}  # the named effects' parameter σ (``effect_sds``)
+    decided = {}  # the values those σ belong to: each named effect as fitted beside the free steady curve
     # the file's own effects are refitted with every candidate: theirs too (not a held stiffness, HELD_STIFFNESS)
     refitted_prior = {t.name for t in prior_terms if t.name not in HELD_STIFFNESS}
     confounded = []
@@ -2616,6 +2637,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # all refitted with the winner; the last round's go into the file written
         cur_terms = winner.against.terms + [_terms_for(winner.name, cmp_, strokes, winner.params.get("min_excursion"))]
         sds = effect_sds(cur_terms, winner.fit.entries, winner.fold_entries, set(named) | refitted_prior)
+        decided = {e["name"]: dict(e["params"]) for e in winner.fit.entries}  # the values σ belong to
         say(0.1 + 0.8 * (step + 1) / s.max_effects, f"adding {winner.name} and refitting everything together")
         # the model goes on as the one that was cross-validated: an effect judged beside a
         # stiffness varying with speed keeps it (held, not named: on clean recordings it takes up
@@ -2636,6 +2658,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         steps.append({"label": f"+ {winner.name}", "name": winner.name, "params": dict(refit.entries[-1]["params"]),
                       "rms": _rms((meas - refit.model)[allm]), "rms_free": _rms((meas - refit.pred)[allm]),
                       "heldout_gain": winner.heldout_gain, "sd": sds.get(winner.name, {}),
+                      "params_decided": dict(winner.fit.entries[-1]["params"]),
                       "folds": f"{winner.folds_improved}/{winner.folds_informative}"})
         scored.append(refit.pred)
         fits.append((list(cur_terms), refit.u))
@@ -2664,6 +2687,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant (and inertia)
         if wf.entries:
             st["params"] = dict(wf.entries[-1]["params"])
+            st["sd"] = with_model_shift(st["sd"], st["params_decided"], st["params"])
         step_preds.append(wf.pred)
     # the alternative's level scales the whole friction beside the free steady curve; the model
     # written refits the S(v) levels themselves (its note below): two different factors
@@ -2746,7 +2770,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # a held entry (rate_stiffness) and the fixed parameters (a reference, a start, a
         # threshold) get none: they were not estimated
         unc.update({f"effects.{i}.params.{k}": sd for i, e in enumerate(final.entries)
-                    for k, sd in sds.get(e["name"], {}).items() if math.isfinite(sd)})
+                    for k, sd in with_model_shift(sds.get(e["name"], {}), decided.get(e["name"], {}),
+                                                  e["params"]).items() if math.isfinite(sd)})
         prov = dict(params.provenance)
         written_params = bake(final_base.replace(effects=()), final.g, final.k0)
         moved = moved_from_held(prov.get("held"), params, written_params, final.g, refit_curve)

@@ -83,7 +83,8 @@ def test_diagnose_cli_writes_json_html_yaml_that_simulate_reproduces(tmp_path):
     i = [e["name"] for e in p.effects].index("time_drift")
     drift, unc = p.effects[i]["params"], p.uncertainty
     assert {k for k in unc if k.startswith("effects.")} == {f"effects.{i}.params.b", f"effects.{i}.params.tau"}, unc
-    best = truth_comparable("time_drift", case.params["time_drift"], float(df.iloc[-1, 0] - df.iloc[0, 0]))
+    best = truth_comparable("time_drift", case.params["time_drift"], float(df.iloc[-1, 0] - df.iloc[0, 0]),
+                            drift["t0"] - float(df.iloc[0, 0]))
     assert abs(drift["tau"] - best["tau"]) < 3 * unc[f"effects.{i}.params.tau"], (drift, unc, best)
     assert abs(drift["b"] - best["b"]) < 3 * unc[f"effects.{i}.params.b"], (drift, unc, best)
     assert set(res["steps"][2]["sd"]) == {"b", "tau"} and "± 1 σ" in html

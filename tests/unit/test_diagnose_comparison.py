@@ -20,6 +20,7 @@ from leuven_friction.identify.diagnose import (
     mean_acceleration,
     model_nuisance,
     noise_colour,
+    with_model_shift,
     speed_order,
     stroke_order,
     steady_sliding,
@@ -803,3 +804,16 @@ def test_noise_colour_is_the_averaged_noise_of_correlated_noise_over_that_of_whi
     assert c.factor == pytest.approx(expected, rel=0.15), (c, expected)
     # nothing at rest long enough for four blocks: nothing is claimed
     assert noise_colour(coloured, np.zeros(n, bool), L).factor == 1.0
+
+
+def test_a_written_value_moved_from_the_decided_one_widens_its_sigma_by_the_move():
+    sd = {"a": 0.0037, "phase": 0.007, "wavelength": float("nan")}
+    decided = {"a": 0.087, "phase": 3.10, "wavelength": 0.1274}
+    written = {"a": 0.104, "phase": -3.10, "wavelength": 0.1275}
+    out = with_model_shift(sd, decided, written)
+    assert out["a"] == pytest.approx(math.sqrt(0.0037**2 + 0.017**2))
+    # 3.10 → −3.10 is a step of 2π − 6.20 ≈ 0.083 across ±π, not 6.2
+    assert out["phase"] == pytest.approx(math.sqrt(0.007**2 + (2 * math.pi - 6.20) ** 2))
+    assert math.isnan(out["wavelength"])  # no σ to widen: none is made up
+    # nothing moved: the folds' σ stands
+    assert with_model_shift(sd, decided, decided)["a"] == pytest.approx(0.0037)
