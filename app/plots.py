@@ -259,8 +259,11 @@ def overview_figure(*, units: dict, hyst: list, strib: list, slip: list, bottom:
             layout["yaxis5"] = dict(AXIS, overlaying="y", side="right", anchor="x", showgrid=False,
                                     tickfont=dict(color=COLORS[4]), automargin=False)
     if not has_loop:
+        # nothing drawn yet (the page's first figure, before its first simulation) is not the static model
+        static = any(r is None for _, role, r in hyst if role == "main")
         ann.append(dict(_ANN, x=0.22, y=0.76, xanchor="center", yanchor="middle", font=dict(size=12, color="#555"),
-                        text="the static model has no presliding:<br>friction jumps at v = 0, no hysteresis curve"))
+                        text="the static model has no presliding:<br>friction jumps at v = 0, no hysteresis curve"
+                        if static else "simulating …"))
     ann.append(dict(_ANN, x=0.0, y=0.955, text="<b>Presliding hysteresis</b> A→B→C→D"))
 
     # --- Stribeck curve S(v) + σ2·v

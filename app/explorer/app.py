@@ -72,6 +72,9 @@ class Explorer:
         self.gui_session = gui.add_markdown(self._session_note(restored, why, session), order=0.1)
         self.gui_message = gui.add_markdown("", order=0.2)
         ctx.status = lambda text: setattr(self.gui_message, "content", text)
+        # the note at the top says what the page started from; a recording uploaded since replaces it
+        self._noted_recording = session.recording_name
+        ctx.listeners.append(self._on_change)
 
         # ---------------------------------------------------------------- tabs, top to bottom
         self.sets = SetsTab(ctx, gui, start_label)  # its proposal box first: seen without scrolling
@@ -98,6 +101,13 @@ class Explorer:
             rec = f", recording **{s.recording_name}**" if s.recording_name else ""
             return f"Session restored (saved {s.saved_at}): {len(s.history)} parameter sets{rec}."
         return "New session: changes are saved as you work and come back after a reload."
+
+    def _on_change(self, reason: str) -> None:
+        name = self.ctx.session.recording_name
+        if reason == "recording" and name and name != self._noted_recording:
+            self._noted_recording = name
+            self.gui_session.content = (f"Recording **{name}** uploaded; {len(self.ctx.session.history)} parameter "
+                                        "sets. Changes are saved as you work and come back after a reload.")
 
     def _toggle_3d(self) -> None:
         on = self.ctx.session.model_view.get("three_d", False) or self.model.gui_3d.value

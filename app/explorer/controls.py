@@ -13,6 +13,7 @@ import threading
 from typing import Callable
 
 import viser
+from viser._messages import GuiSliderMark
 
 from ...model import FrictionParams
 from ...model.errors import ParameterError
@@ -24,6 +25,13 @@ SLIDER_STEPS = 400
 
 def _exp(x: float) -> float:
     return math.log10(abs(x))
+
+
+def set_marks(slider, marks) -> None:
+    """Give ``slider`` new tick labels ((value, label) pairs). viser 1.1 sends a slider's marks
+    to the browser only through its prop ``_marks``: ``slider.marks = …`` sets a plain Python
+    attribute the browser never sees, and the labels of the old range stayed under the new one."""
+    slider._marks = tuple(GuiSliderMark(value=float(v), label=label) for v, label in marks)
 
 
 class ParamControl:
@@ -102,7 +110,7 @@ class ParamControl:
                 lo, hi = min(lo, self.slider.min, s), max(hi, self.slider.max, s)
                 self.slider.min, self.slider.max = lo, hi
                 self.slider.step = (hi - lo) / SLIDER_STEPS
-                self.slider.marks = self._marks(lo, hi)
+                set_marks(self.slider, self._marks(lo, hi))
             self.slider.value = s
         finally:
             self._quiet.on = False
@@ -129,7 +137,7 @@ class ParamControl:
         try:
             self.slider.min, self.slider.max = lo, hi
             self.slider.step = (hi - lo) / SLIDER_STEPS
-            self.slider.marks = self._marks(lo, hi)
+            set_marks(self.slider, self._marks(lo, hi))
         finally:
             self._quiet.on = False
         self._move_slider(v)

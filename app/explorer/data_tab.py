@@ -170,6 +170,7 @@ class DataTab:
         ctx = self.ctx
         s = ctx.session
         name, content = s.recording_name, s.recording_bytes
+        ctx.status("")  # a message about what came before (a refused file, a YAML error) is not about this one
         self.columns = header_columns(content)
         opts = (NONE, *self.columns)
         for sig, h in self.gui_map.items():

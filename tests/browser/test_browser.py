@@ -287,6 +287,17 @@ def test_load_yaml_in_the_page(chromium, server, tmp_path):
     upload_for(page, "Load parameter YAML").set_input_files(str(bad))
     wait_text(page, "broken.yaml", 30)
     assert table_value(page, "Fc⁺", 41.5) == pytest.approx(41.5)
+    # the next upload is of something else: the YAML's error goes, and the note at the top names
+    # the recording now in the session
+    t = np.arange(2000) * 2e-3
+    q = 0.2 * np.sin(2 * np.pi * 0.5 * t)
+    rec = tmp_path / "joint_after.csv"
+    rec.write_text("time [s],position [rad],torque [N*m]\n"
+                   + "".join(f"{a:.4f},{b:.8f},{3.0 * np.tanh(c / 0.01):.5f}\n" for a, b, c in zip(t, q, np.gradient(q, t))))
+    upload_for(page, "Upload recording").set_input_files(str(rec))
+    wait_text(page, "Recording joint_after.csv uploaded", 30)
+    said = [line for line in page.locator("body").inner_text().splitlines() if "broken.yaml" in line]
+    assert all(line.startswith("Uploading broken.yaml") for line in said), said  # (the browser's upload toast)
     page.close()
 
 

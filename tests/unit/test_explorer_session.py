@@ -81,6 +81,10 @@ def test_overview_static_note_and_overlay_on_its_own_axes():
     assert np.allclose(marks.y[1:], [20.0, 5.0, 30.0], atol=0.5)
     csv_text = plots.figure_csv(fig2)
     assert csv_text.splitlines()[0] == "trace,x_axis,x,y,sigma" and "A–D" in csv_text
+    # the page's first figure, before anything is simulated, does not claim the static model
+    first = plots.overview_figure(units=dict(p.units), hyst=[], strib=[], slip=[], bottom={})
+    texts = " ".join(a["text"] for a in first.layout.annotations)
+    assert "no presliding" not in texts and "simulating" in texts
 
 
 def test_web_messages_name_the_file_and_no_command_line_options():
