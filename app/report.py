@@ -26,7 +26,7 @@ def diagnosis_html(d, source: str) -> str:
                      f"{s['rms_free']:.4g}", format_values(s["name"], s.get("params") or {}, d.params_before.units, s.get("sd"))]
                     for s in d.steps],
                    ["step", "RMS gap of the model written", "× noise floor", "RMS beside a free S(v) (decided on)",
-                    "effect parameters (± 1 σ: jackknife over the folds)"])
+                    "effect parameters (± 1 σ: the folds' jackknife and the move from the value decided on)"])
     conf = ""
     if d.confounded:
         conf = "<h2>Confounded candidates</h2>" + _table(

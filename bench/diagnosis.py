@@ -45,10 +45,10 @@ def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True, shuffle
             "space": d.space, "samples": len(df), "seconds": el, "notes": list(d.notes),
             "heldout_gains": [s.get("heldout_gain") for s in d.steps[2:]],
             # each named effect's written parameters and their σ, and the generator's own values
-            "effect_fits": [{"name": st["name"], "params": dict(st["params"] or {}), "sd": dict(st.get("sd") or {})}
-                            for st in d.steps[2:]],
+            "effect_fits": [{"name": st["name"], "params": dict(st["params"] or {}), "sd": dict(st.get("sd") or {}),
+                             "decided": dict(st.get("params_decided") or {})} for st in d.steps[2:]],
             "truth": {e: {k: float(v) for k, v in p.items()} for e, p in case.params.items()},
-            "duration": float(df.iloc[-1, 0] - df.iloc[0, 0]),
+            "duration": float(df.iloc[-1, 0] - df.iloc[0, 0]), "start": float(df.iloc[0, 0]),
             "best_rejected": max((c["heldout_gain"] for c in d.candidates if not c["significant"]), default=None),
             "candidates": [{k: c.get(k) for k in ("name", "heldout_gain", "folds_improved", "folds_informative", "where",
                                                   "gain_where", "folds_where", "delta_bic", "significant", "cross_validated", "beside")}
@@ -99,7 +99,7 @@ def truth_comparable(name: str, truth: dict, duration: float, t0: float = 0.0) -
     """The generator's values (``synth.hidden``) that mean the same as a candidate's parameter:
     the load exponent; the ripple's wavelength and harmonic amplitudes; for the drift, the
     candidate's own law 1 + b·(1 − e^{−(t−t0)/τ}) fitted without noise, from the drift's start
-    ``t0`` (the first sample compared) to the session's ``duration``, to the generator's
+    ``t0`` (the first sample compared, from the log's start) to the session's ``duration``, to the generator's
     exp(−β·ΔT·(1 − e^{−t/τ_T})) relative to its value at t0 (exponential in the temperature, its
     best τ is 6–25 % off τ_T at the suite's β). A softening's hyperbola has no parameter an
     exponential's means."""
@@ -128,7 +128,7 @@ def sd_calibration(rows) -> dict:
         for fit in r.get("effect_fits", []):
             if fit["name"] not in r.get("truth", {}):
                 continue
-            t0 = fit["params"].get("t0", 0.0)
+            t0 = fit["params"].get("t0", 0.0) - r.get("start", 0.0)  # the drift's start, from the log's
             for k, v in truth_comparable(fit["name"], r["truth"][fit["name"]], r["duration"], t0).items():
                 sd = fit["sd"].get(k)
                 if sd and k in fit["params"]:

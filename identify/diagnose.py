@@ -222,35 +222,44 @@ def _blockwise_sd(d: np.ndarray) -> float:
     return float(np.percentile([_mad_sd(b) for b in np.array_split(d, nb)], NOISE_QUANTILE))
 
 
-COLOUR_SHOWN = 1.5  # at an eighth of the averaging, noise this much above white counts as coloured
-COLOUR_DETECTION = 8  # … blocks of 1/8 of the averaging: short against the force's own changes at rest
-COLOUR_MIN_BLOCKS = 30  # third differences of block means a ratio is taken over, at least
+COLOUR_SHOWN = 1.5  # over the shortest blocks, noise this much above white counts as coloured
+COLOUR_DETECTION = 8  # … blocks of L/8 samples (at least 8, at most L): short against the force's own changes at rest
+COLOUR_GROWTH = 2.2  # a noise's ratio grows at most this much per doubling of the block (see ``noise_colour``)
+COLOUR_MIN_DIFFERENCES = 30  # third differences of block means a ratio is taken over, at least
 
 
 @dataclass
 class NoiseColour:
     """How much noisier a log averaged over ``average`` samples is than white noise of the same
     sample-to-sample sd would leave it (``factor``; 1 where that is not shown), measured where
-    the machine rests: at an eighth of the averaging (``shown``, from ``blocks`` block means),
-    which decides, and at the averaging itself (``at_average``), which sizes it."""
+    the machine rests: over blocks of ``shortest`` samples (``shown``, from ``differences``
+    third differences of block means), which decides, then over blocks doubling up to the
+    averaging, which size it — up to ``sized_over`` samples, where the growth stopped looking
+    like noise's (then the factor is a lower bound)."""
 
     factor: float
     shown: float
-    at_average: float
-    blocks: int
+    shortest: int
+    sized_over: int
+    differences: int
     average: int
 
     def note(self) -> str:
+        where = (f"over blocks of {self.sized_over} samples, as far as the force at rest lets noise be told from "
+                 f"its own changes: at least that much" if self.sized_over < self.average else
+                 f"{self.shown:.3g} times over {self.shortest} samples")
         return (f"the log's noise is coloured: averaged over {self.average} samples it is {self.factor:.3g} times what "
-                f"white noise of the same sample-to-sample sd would leave ({self.shown:.3g} times over "
-                f"{self.average // COLOUR_DETECTION} samples, {self.blocks} blocks at rest); the noise floor counts it")
+                f"white noise of the same sample-to-sample sd would leave ({where}; {self.differences} block means "
+                f"at rest); the noise floor counts it")
 
 
 def _averaged_over_white(raw: np.ndarray, rest: np.ndarray, block: int) -> tuple[float, int]:
     """(sd of ``raw`` averaged over ``block`` samples / its white-noise value sd_Δ/√2/√block,
     third differences counted), from the means of consecutive blocks inside each run of
     ``rest``; third differences (variance 20·σ_m² for independent means) remove whatever the
-    force does there up to quadratically in time (a ramp, a slow swing)."""
+    force does there up to quadratically in time (a ramp, a slow swing). Neighbouring means of
+    a noise correlated over many samples are correlated too, and their differences read low:
+    an AR(1) noise with ρ = 0.96 averaged over 100 samples reads 8.5 for 10.3."""
     edges = np.diff(np.concatenate([[0], rest.astype(np.int8), [0]]))
     d3 = []
     for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):
@@ -260,7 +269,7 @@ def _averaged_over_white(raw: np.ndarray, rest: np.ndarray, block: int) -> tuple
     count = sum(map(len, d3))
     both = rest[1:] & rest[:-1]
     white = _mad_sd(np.diff(raw)[both]) / math.sqrt(2.0 * block) if both.sum() >= 20 else 0.0
-    if count < COLOUR_MIN_BLOCKS or white <= 0.0:
+    if count < COLOUR_MIN_DIFFERENCES or white <= 0.0:
         return float("nan"), count
     return _mad_sd(np.concatenate(d3)) / math.sqrt(20.0) / white, count
 
@@ -272,20 +281,46 @@ def noise_colour(raw: np.ndarray, rest: np.ndarray, average: int) -> NoiseColour
     correlated over many samples (a filtered torque estimate, an AR(1) disturbance) keeps most
     of its variance through the average of eq. (8), and a floor taken as white would be several
     times too low. Measured where the machine rests (|v| < v_rest), where neither a ripple along
-    the position nor the motion's transitions enter. Decided over blocks of an eighth of the
-    averaging, short against anything the force itself does at rest: over the whole averaging
-    the presliding cycles of the project's robot joints (white noise) read 1.5–8 times white,
-    over an eighth 0.93–1.00; an AR(1) torque (ρ = 0.96) 2.0–2.7 times."""
+    the position nor the motion's transitions enter.
+
+    Decided over the shortest blocks (L/8 samples, at least 8 unless L is shorter:
+    ``colour_blocks``), short against
+    anything the force itself does at rest: over whole blocks of L the presliding cycles of the
+    project's robot joints (white noise) read up to 8 times white, over the shortest blocks
+    0.85–1.15 (the suite's 153 recordings with an averaging); the rotary table's AR(1) torque
+    2.0–2.7. Then sized over blocks doubling up to L. The variance of a mean over 2B samples is at most that over B, so a
+    noise's ratio grows at most √2 per doubling, and as this estimator reads it (low where
+    neighbouring means are correlated, less so as blocks grow) at most about 2 (AR(1) noise
+    with ρ up to 0.99: 1.1–2.0); a doubling that grows it more is the force's own change at rest
+    entering, and the sizing stops at the block before: the factor is then a lower bound, and
+    the note says so. Noise correlated over longer than the averaging reads low (ρ = 0.96 over
+    13 samples: 2.5 for 5.7), and noise slower than the averaging itself is taken for the
+    force's changes by the third differences: both are under-counted."""
     L = int(average)
-    short = L // COLOUR_DETECTION
-    if short < 2:
-        return NoiseColour(1.0, float("nan"), float("nan"), 0, L)
-    shown, blocks = _averaged_over_white(raw, rest, short)
-    at_l, _ = _averaged_over_white(raw, rest, L)
+    blocks = colour_blocks(L)
+    if blocks[0] < 2:
+        return NoiseColour(1.0, float("nan"), blocks[0], blocks[0], 0, L)
+    shown, count = _averaged_over_white(raw, rest, blocks[0])
     if not shown >= COLOUR_SHOWN:
-        return NoiseColour(1.0, shown, at_l, blocks, L)
-    # sized at the averaging itself where enough of it rests; else what the shorter blocks show
-    return NoiseColour(max(shown, at_l) if np.isfinite(at_l) else shown, shown, at_l, blocks, L)
+        return NoiseColour(1.0, shown, blocks[0], blocks[0], count, L)
+    factor, sized = shown, blocks[0]
+    for block in blocks[1:]:
+        r, _ = _averaged_over_white(raw, rest, block)
+        if not (np.isfinite(r) and r <= factor * COLOUR_GROWTH):
+            break
+        factor, sized = max(factor, r), block
+    return NoiseColour(factor, shown, blocks[0], sized, count, L)
+
+
+def colour_blocks(average: int) -> list[int]:
+    """The block lengths ``noise_colour`` reads, shortest first: L//8, L//4, L//2, L — each about
+    twice the one before and the last the averaging itself — from the first that is at least
+    COLOUR_DETECTION samples long (only L itself where L is shorter)."""
+    L = int(average)
+    k = COLOUR_DETECTION.bit_length() - 1  # 3: blocks of L/8
+    while k > 0 and L >> k < min(L, COLOUR_DETECTION):
+        k -= 1
+    return [L >> j for j in range(k, -1, -1)]
 
 
 def smoothing_window(x: np.ndarray, dt: float, sd: float) -> int:
@@ -1905,7 +1940,7 @@ def with_model_shift(sd: dict, decided: dict, written: dict) -> dict:
     part of what the curve held, and the effect moves with them). The jackknife sees only the
     data's part; the shift is a sample of the model's own (on the rotary table made apart, a
     ripple's phase was decided at 1.118 ± 0.007 and written at 1.197, the truth 1.13). A
-    phase's shift is wrapped to (−π, π]."""
+    phase's shift is wrapped to [−π, π]."""
     out = {}
     for k, v in sd.items():
         if k in decided and k in written and math.isfinite(v):
@@ -2047,6 +2082,10 @@ class Diagnosis:
                      f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
             if s.get("params"):
                 L.append("      " + format_values(s["name"], s["params"], self.params_before.units, s.get("sd")))
+            if s.get("params_decided") and s.get("params") and s["params_decided"] != s["params"]:
+                # σ counts the move from the value the folds' spread belongs to: show where that was
+                L.append("      decided beside the free steady curve: "
+                         + format_values(s["name"], s["params_decided"], self.params_before.units))
         L.append("Per regime (RMS before → after the refit → final, the model written; the noise floor of that "
                  "regime's samples):")
         for k, r in self.regimes.items():
@@ -2687,6 +2726,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant (and inertia)
         if wf.entries:
             st["params"] = dict(wf.entries[-1]["params"])
+        if "params_decided" in st:  # a step that named an effect (the alternative's may carry the file's own)
             st["sd"] = with_model_shift(st["sd"], st["params_decided"], st["params"])
         step_preds.append(wf.pred)
     # the alternative's level scales the whole friction beside the free steady curve; the model

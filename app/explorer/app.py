@@ -106,8 +106,8 @@ class Explorer:
         name = self.ctx.session.recording_name
         if reason == "recording" and name and name != self._noted_recording:
             self._noted_recording = name
-            self.gui_session.content = (f"Recording **{name}** uploaded; {len(self.ctx.session.history)} parameter "
-                                        "sets. Changes are saved as you work and come back after a reload.")
+            self.gui_session.content = (f"Recording **{name}** uploaded. Changes are saved as you work and come "
+                                        "back after a reload.")
 
     def _toggle_3d(self) -> None:
         on = self.ctx.session.model_view.get("three_d", False) or self.model.gui_3d.value

@@ -13,7 +13,11 @@ import threading
 from typing import Callable
 
 import viser
-from viser._messages import GuiSliderMark
+
+try:  # where viser 1.1 keeps it; without it a range change keeps the old tick labels (``set_marks``)
+    from viser._messages import GuiSliderMark
+except ImportError:  # pragma: no cover - another viser
+    GuiSliderMark = None
 
 from ...model import FrictionParams
 from ...model.errors import ParameterError
@@ -31,6 +35,9 @@ def set_marks(slider, marks) -> None:
     """Give ``slider`` new tick labels ((value, label) pairs). viser 1.1 sends a slider's marks
     to the browser only through its prop ``_marks``: ``slider.marks = …`` sets a plain Python
     attribute the browser never sees, and the labels of the old range stayed under the new one."""
+    if GuiSliderMark is None or not hasattr(slider, "_marks"):
+        slider.marks = marks  # an older or newer viser: its public way, whatever it does
+        return
     slider._marks = tuple(GuiSliderMark(value=float(v), label=label) for v, label in marks)
 
 

@@ -113,6 +113,7 @@ class DataTab:
                 ctx.session.mapping = {}
                 ctx.session.flip_friction = None
                 ctx.dirty = True  # saved with the session now, not at the next redraw: a reload keeps it
+            ctx.status("")  # the message about what came before (a refused file, a YAML error) is not about this file
             self.job.submit("load", True)
 
         @self.gui_remap.on_click
@@ -170,7 +171,6 @@ class DataTab:
         ctx = self.ctx
         s = ctx.session
         name, content = s.recording_name, s.recording_bytes
-        ctx.status("")  # a message about what came before (a refused file, a YAML error) is not about this one
         self.columns = header_columns(content)
         opts = (NONE, *self.columns)
         for sig, h in self.gui_map.items():
