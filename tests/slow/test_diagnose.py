@@ -74,10 +74,10 @@ def test_diagnose_cli_writes_json_html_yaml_that_simulate_reproduces(tmp_path):
     p = load_params(out_yaml)
     assert [e["name"] for e in p.effects] == res["effects"]
     # the drift's estimated parameters carry their 1-σ (the jackknife over the cross-validation's
-    # folds), in the file and in the report, and its start t0, fixed at the record's, none. The
-    # generator's drift, a viscosity law exp(−β·ΔT(t)) of a first-order temperature, is best
-    # matched over the session by the candidate's law with τ = 68.0 s and b = −0.174
-    # (``truth_comparable``): both within 3 σ (measured: 1.5 σ, 0.4 σ)
+    # folds and the model's move from the value decided on), in the file and in the report, and
+    # its start t0, fixed at the first sample compared, none. The generator's drift, a viscosity
+    # law exp(−β·ΔT(t)) of a first-order temperature, is best matched from t0 to the end by the
+    # candidate's law (``truth_comparable``): both within 3 σ
     from bench.diagnosis import truth_comparable
 
     i = [e["name"] for e in p.effects].index("time_drift")
