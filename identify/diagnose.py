@@ -2575,6 +2575,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     named = []
     sds = {}  # the named effects' parameter σ (``effect_sds``)
     decided = {}  # the values those σ belong to: each named effect as fitted beside the free steady curve
+    rounds = [({}, {})]  # (sds, decided) after each round that named an effect: an unused last one goes back a round
     # the file's own effects are refitted with every candidate: theirs too (not a held stiffness, HELD_STIFFNESS)
     refitted_prior = {t.name for t in prior_terms if t.name not in HELD_STIFFNESS}
     confounded = []
@@ -2677,6 +2678,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         cur_terms = winner.against.terms + [_terms_for(winner.name, cmp_, strokes, winner.params.get("min_excursion"))]
         sds = effect_sds(cur_terms, winner.fit.entries, winner.fold_entries, set(named) | refitted_prior)
         decided = {e["name"]: dict(e["params"]) for e in winner.fit.entries}  # the values σ belong to
+        rounds.append((sds, decided))
         say(0.1 + 0.8 * (step + 1) / s.max_effects, f"adding {winner.name} and refitting everything together")
         # the model goes on as the one that was cross-validated: an effect judged beside a
         # stiffness varying with speed keeps it (held, not named: on clean recordings it takes up
@@ -2719,7 +2721,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         steps.pop()
         scored.pop()
         written.pop()
-        sds.pop(gone, None)
+        # the model written is the step before's: so are its effects' σ and the values they belong to
+        rounds.pop()
+        sds, decided = rounds[-1]
         engine.set_base(written[-1][1])
     (null, *_), (final, final_base, final_reid, reidentified) = written[0], written[-1]
     for st, (wf, *_) in zip(steps[1:], written):
