@@ -40,7 +40,7 @@ def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True, shuffle
     gap = [s["rms"] for s in d.steps]
     return {"kind": kind, "seed": seed, "hidden": list(effects), "expected": sorted(case.expected), "named": named,
             "confounded": [c["effects"] for c in d.confounded], "unsettled": [c["name"] for c in d.unsettled],
-            "unused": [c["name"] for c in d.unused],
+            "unused": [c["name"] for c in d.unused], "elsewhere": [c["name"] for c in d.elsewhere],
             "rms_steps": gap, "rms_free_steps": [s.get("rms_free") for s in d.steps], "noise": d.noise,
             "space": d.space, "samples": len(df), "seconds": el, "notes": list(d.notes),
             "heldout_gains": [s.get("heldout_gain") for s in d.steps[2:]],

@@ -1787,11 +1787,19 @@ class Evidence:
             return self.in_sample_gain
         return float(1.0 - math.sqrt(np.sum(self.heldout_sse) / max(np.sum(self.null_sse), 1e-300)))
 
-    def evident(self, s: Settings) -> bool:
-        """Better held out in most informative folds, by ``min_gain`` pooled, and where its physics shows."""
+    def gains_held_out(self, s: Settings) -> bool:
+        """Better held out in most informative folds, and by ``min_gain`` pooled."""
         k = self.folds_informative
-        return bool(self.cross_validated and k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain
-                    and self.not_where_it_shows is None)
+        return bool(self.cross_validated and k >= 2 and self.folds_improved > k / 2 and self.heldout_gain >= s.min_gain)
+
+    def evident(self, s: Settings) -> bool:
+        """Gains held out (``gains_held_out``), and where its physics shows."""
+        return self.gains_held_out(s) and self.not_where_it_shows is None
+
+    def elsewhere(self, s: Settings) -> bool:
+        """Gains held out, but not in the regime where its physics must show (a drift beside a
+        ripple on a sweep: better in the transitions, not in the steady sliding)."""
+        return self.gains_held_out(s) and self.not_where_it_shows is not None
 
     def passes(self, s: Settings) -> bool:
         """Evident, and (``Settings.must_settle``) seen to settle within the session."""
@@ -1804,7 +1812,7 @@ class Evidence:
                 "folds_informative": self.folds_informative, "delta_bic": self.delta_bic, "passes": self.passes(s),
                 "not_where_it_shows": self.not_where_it_shows, "where": self.where, "gain_where": self.gain_where,
                 "folds_where": self.folds_where, "beside": self.beside, "unsettled": self.unsettled,
-                "evident": self.evident(s),
+                "evident": self.evident(s), "elsewhere": self.elsewhere(s),
                 "significant": False, "refitted": True}
 
 
@@ -2019,11 +2027,20 @@ class Diagnosis:
             return []  # such a candidate is named, with that caveat in the notes
         return [c for c in self.candidates if c.get("unsettled") and c.get("evident")]
 
+    @property
+    def elsewhere(self) -> list:
+        """The last round's candidates that gain held out, but not where their physics must show
+        (``Evidence.elsewhere``): not named, and said."""
+        return [c for c in self.candidates if c.get("elsewhere") and not c.get("significant")]
+
     def not_named(self) -> list:
         """What the evidence shows but the diagnosis does not name, one short line each: an
-        effect seen that is not seen to settle within the session (with ``Settings.must_settle``) and
-        pairs of effects confounded with each other."""
+        effect seen that is not seen to settle within the session (with ``Settings.must_settle``),
+        one that gains held out but not where it must show, and pairs of effects confounded
+        with each other."""
         return ([f"{c['name']} seen, not named (its change is not seen to settle within the session)" for c in self.unsettled]
+                + [f"{c['name']} seen, not named (it gains held out, but not in {c['not_where_it_shows']})"
+                   for c in self.elsewhere]
                 + [f"{c['effects'][0]} and {c['effects'][1]} confounded" for c in self.confounded]
                 + [f"{c['name']} passed, not named (the model written does not use it)" for c in self.unused])
 
@@ -2040,6 +2057,7 @@ class Diagnosis:
             "space": self.space, "noise": self.noise, "rms_before": self.rms_before, "rms_after": self.rms_after,
             "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
             "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
+            "elsewhere": [c["name"] for c in self.elsewhere],
             "candidates": self.candidates, "notes": list(self.notes),
             "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
                          "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr,
@@ -2061,6 +2079,11 @@ class Diagnosis:
         for c in self.unsettled:
             L.append(f"Seen, not named: {c['name']} improves the held-out prediction by {100 * c['heldout_gain']:.1f} % "
                      f"(folds {c['folds_improved']}/{c['folds_informative']}), but {c['unsettled']}.")
+        for c in self.elsewhere:
+            L.append(f"Seen, not named: {c['name']} improves the held-out prediction by {100 * c['heldout_gain']:.1f} % "
+                     f"(folds {c['folds_improved']}/{c['folds_informative']}), but in {c['not_where_it_shows']}, where "
+                     f"its physics must show, by {100 * (c['gain_where'] or 0.0):.1f} % (folds {c['folds_where']}): "
+                     f"what it takes up lies elsewhere, and may be another effect's or the base's.")
         for c in self.unused:
             L.append(f"Passed, not named: {c['name']} improved the held-out prediction beside a free steady curve, but "
                      f"in the model written (n, σ1 and S(v) refitted with it) it removes only {100 * c['own_gain']:.1f} % "

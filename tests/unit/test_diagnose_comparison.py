@@ -846,3 +846,24 @@ def test_a_written_value_moved_from_the_decided_one_widens_its_sigma_by_the_move
     assert math.isnan(out["wavelength"])  # no σ to widen: none is made up
     # nothing moved: the folds' σ stands
     assert with_model_shift(sd, decided, decided)["a"] == pytest.approx(0.0037)
+
+
+def test_a_candidate_that_gains_held_out_but_not_where_it_must_show_is_seen_elsewhere_not_evident():
+    from leuven_friction.identify.diagnose import Evidence, Settings
+
+    s = Settings()
+    better = np.array([0.80, 0.85, 0.90, 1.10, 0.80])  # held-out SSE against the alternative's 1: 4 of 5 folds
+    null, inf = np.ones(5), np.ones(5, bool)
+
+    def ev(sse, failed):
+        return Evidence("time_drift", {}, 1.0, sse, null, inf, 0.0, not_where_it_shows=failed, where="steady sliding",
+                        gain_where=0.02, folds_where="3/5")
+
+    # 1 − √(mean SSE ratio) = 1 − √0.89 ≈ 5.7 % pooled, over the 3 % bar
+    there, elsewhere = ev(better, None), ev(better, "steady sliding")
+    assert there.evident(s) and not there.elsewhere(s)
+    assert elsewhere.elsewhere(s) and not elsewhere.evident(s) and not elsewhere.passes(s)
+    d = elsewhere.as_dict(s)
+    assert d["elsewhere"] and not d["evident"] and d["not_where_it_shows"] == "steady sliding"
+    # no held-out gain at all: neither named nor said to be seen
+    assert not ev(np.full(5, 1.05), "steady sliding").elsewhere(s)
