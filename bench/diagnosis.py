@@ -99,9 +99,9 @@ def truth_comparable(name: str, truth: dict, duration: float, t0: float = 0.0) -
     """The generator's values (``synth.hidden``) that mean the same as a candidate's parameter:
     the load exponent; the ripple's wavelength and harmonic amplitudes; for the drift, the
     candidate's own law 1 + b·(1 − e^{−(t−t0)/τ}) fitted without noise, from the drift's start
-    ``t0`` (the first sample compared, from the log's start) to the session's ``duration``, to the generator's
-    exp(−β·ΔT·(1 − e^{−t/τ_T})) relative to its value at t0 (exponential in the temperature, its
-    best τ is 6–25 % off τ_T at the suite's β). A softening's hyperbola has no parameter an
+    ``t0`` (the first sample compared, from the log's start) to the session's ``duration``,
+    to the generator's exp(−β·ΔT·(1 − e^{−t/τ_T})) relative to its value at t0 (exponential in
+    the temperature, its best τ is 6–25 % off τ_T at the suite's β). A softening's hyperbola has no parameter an
     exponential's means."""
     if name == "normal_load":
         return {"alpha": truth["alpha"]}

@@ -223,7 +223,7 @@ def _blockwise_sd(d: np.ndarray) -> float:
 
 
 COLOUR_SHOWN = 1.5  # over the shortest blocks, noise this much above white counts as coloured
-COLOUR_DETECTION = 8  # … blocks of L/8 samples (at least 8, at most L): short against the force's own changes at rest
+COLOUR_DETECTION = 8  # … over blocks of L/8 samples, at least 8 (``colour_blocks``)
 COLOUR_GROWTH = 2.2  # a noise's ratio grows at most this much per doubling of the block (see ``noise_colour``)
 COLOUR_MIN_DIFFERENCES = 30  # third differences of block means a ratio is taken over, at least
 
@@ -249,8 +249,8 @@ class NoiseColour:
                  f"its own changes: at least that much" if self.sized_over < self.average else
                  f"{self.shown:.3g} times over {self.shortest} samples")
         return (f"the log's noise is coloured: averaged over {self.average} samples it is {self.factor:.3g} times what "
-                f"white noise of the same sample-to-sample sd would leave ({where}; {self.differences} block means "
-                f"at rest); the noise floor counts it")
+                f"white noise of the same sample-to-sample sd would leave ({where}; {self.differences} third "
+                f"differences of block means at rest); the noise floor counts it")
 
 
 def _averaged_over_white(raw: np.ndarray, rest: np.ndarray, block: int) -> tuple[float, int]:
@@ -284,17 +284,17 @@ def noise_colour(raw: np.ndarray, rest: np.ndarray, average: int) -> NoiseColour
     the position nor the motion's transitions enter.
 
     Decided over the shortest blocks (L/8 samples, at least 8 unless L is shorter:
-    ``colour_blocks``), short against
-    anything the force itself does at rest: over whole blocks of L the presliding cycles of the
-    project's robot joints (white noise) read up to 8 times white, over the shortest blocks
-    0.85–1.15 (the suite's 153 recordings with an averaging); the rotary table's AR(1) torque
-    2.0–2.7. Then sized over blocks doubling up to L. The variance of a mean over 2B samples is at most that over B, so a
-    noise's ratio grows at most √2 per doubling, and as this estimator reads it (low where
-    neighbouring means are correlated, less so as blocks grow) at most about 2 (AR(1) noise
-    with ρ up to 0.99: 1.1–2.0); a doubling that grows it more is the force's own change at rest
-    entering, and the sizing stops at the block before: the factor is then a lower bound, and
-    the note says so. Noise correlated over longer than the averaging reads low (ρ = 0.96 over
-    13 samples: 2.5 for 5.7), and noise slower than the averaging itself is taken for the
+    ``colour_blocks``), short against anything the force itself does at rest: over whole
+    blocks of L the presliding cycles of the project's robot joints (white noise) read up to 8
+    times white, over the shortest blocks 0.85–1.15 (the suite's 153 recordings with an
+    averaging); the rotary table's AR(1) torque 2.0–2.7. Then sized over blocks doubling up to
+    L. The variance of a mean over 2B samples is at most that over B, so a noise's ratio grows
+    at most √2 per doubling, and as this estimator reads it (low where neighbouring means are
+    correlated, less so as blocks grow) at most about 2 (AR(1) noise with ρ up to 0.99:
+    1.1–2.0); a doubling that grows it more than COLOUR_GROWTH is the force's own change at
+    rest entering, and the sizing stops at the block before: the factor is then a lower bound,
+    and the note says so. Noise correlated over longer than the averaging reads low (ρ = 0.96
+    over 13 samples: 2.5 for 5.7), and noise slower than the averaging itself is taken for the
     force's changes by the third differences: both are under-counted."""
     L = int(average)
     blocks = colour_blocks(L)
@@ -2074,6 +2074,9 @@ class Diagnosis:
                      "session (required here).")
         elif self.unused:
             L.append("No missing effect named: what improved the held-out prediction is not used by the model written.")
+        elif self.elsewhere:
+            L.append("No missing effect named: what improves the held-out prediction does not improve it where its "
+                     "physics must show.")
         else:
             L.append("No missing effect named: nothing improves the held-out prediction in most folds.")
         for c in self.unsettled:
