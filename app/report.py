@@ -22,21 +22,31 @@ def diagnosis_html(d, source: str) -> str:
     for i, fig in enumerate(figs):
         parts.append(pio.to_html(fig, include_plotlyjs=(i == 0), full_html=False, config={"displaylogo": False}))
     title = f"Friction model diagnosis — {html.escape(source)}"
+    units = d.params_before.units
     steps = _table([[s["label"], f"{s['rms']:.4g}", f"{s['rms'] / d.noise:.2f}" if d.noise else "",
-                     f"{s['rms_free']:.4g}", format_values(s["name"], s.get("params") or {}, d.params_before.units, s.get("sd"))]
+                     f"{s['rms_free']:.4g}", format_values(s["name"], s.get("params") or {}, units, s.get("sd")),
+                     format_values(s["name"], s.get("params_decided") or {}, units)]
                     for s in d.steps],
                    ["step", "RMS gap of the model written", "× noise floor", "RMS beside a free S(v) (decided on)",
-                    "effect parameters (± 1 σ: the folds' jackknife and the move from the value decided on)"])
+                    "effect parameters (± 1 σ: the folds' jackknife and the move from the value decided on)",
+                    "decided on, beside the free S(v)"])
+    if len(d.effects) > 1:
+        steps += "<h2>Effects as written to the file</h2>" + _table(
+            [[e["name"], format_values(e["name"], e["params"], units, e["sd"])] for e in d.written_effects()],
+            ["effect", "values (every effect refitted together, ± 1 σ)"])
     conf = ""
     if d.confounded:
         conf = "<h2>Confounded candidates</h2>" + _table(
             [[" / ".join(c["effects"]), f"{c['correlation']:.2f}", " vs ".join(f"{100 * g:.1f} %" for g in c["gains"]),
               c["experiment"]] for c in d.confounded],
             ["candidates", "correlation of corrections", "held-out gains", "experiment that separates them"])
-    if d.unsettled:
+    if d.unsettled or d.elsewhere:
         conf += "<h2>Seen, not named</h2>" + _table(
             [[c["name"], f"{100 * c['heldout_gain']:.1f} %", f"{c['folds_improved']}/{c['folds_informative']}",
-              c["unsettled"]] for c in d.unsettled],
+              c["unsettled"]] for c in d.unsettled]
+            + [[c["name"], f"{100 * c['heldout_gain']:.1f} %", f"{c['folds_improved']}/{c['folds_informative']}",
+                f"its held-out gain in {c['not_where_it_shows']}, where its physics must show, is "
+                f"{100 * (c['gain_where'] or 0.0):+.1f} % (folds {c['folds_where']})"] for c in d.elsewhere],
             ["candidate", "held-out gain", "folds", "why it is not named"])
     return f"""<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>{title}</title>

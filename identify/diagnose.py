@@ -2049,6 +2049,17 @@ class Diagnosis:
         # steps: [model as given, base refit, + first effect, + second effect, …]
         return self.steps[2]["params"] if self.effects else None
 
+    def written_effects(self) -> list:
+        """[{name, params, sd}] of every effect in the model written, as the file has them: the
+        last step's model, every effect refitted together — with two effects the first one's
+        values and σ there differ from its own step's line."""
+        if not self.effects or self.params_after is None:
+            return []
+        unc = self.params_after.uncertainty
+        return [{"name": e["name"], "params": dict(e["params"]),
+                 "sd": {k: unc[f"effects.{i}.params.{k}"] for k in e["params"] if f"effects.{i}.params.{k}" in unc}}
+                for i, e in enumerate(self.params_after.effects)]
+
     def summary(self) -> dict:
         return {
             "effects": list(self.effects), "effect": self.effect, "effect_params": self.effect_params,
@@ -2057,7 +2068,7 @@ class Diagnosis:
             "space": self.space, "noise": self.noise, "rms_before": self.rms_before, "rms_after": self.rms_after,
             "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
             "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
-            "elsewhere": [c["name"] for c in self.elsewhere],
+            "elsewhere": [c["name"] for c in self.elsewhere], "written_effects": self.written_effects(),
             "candidates": self.candidates, "notes": list(self.notes),
             "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
                          "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr,
@@ -2084,9 +2095,10 @@ class Diagnosis:
                      f"(folds {c['folds_improved']}/{c['folds_informative']}), but {c['unsettled']}.")
         for c in self.elsewhere:
             L.append(f"Seen, not named: {c['name']} improves the held-out prediction by {100 * c['heldout_gain']:.1f} % "
-                     f"(folds {c['folds_improved']}/{c['folds_informative']}), but in {c['not_where_it_shows']}, where "
-                     f"its physics must show, by {100 * (c['gain_where'] or 0.0):.1f} % (folds {c['folds_where']}): "
-                     f"what it takes up lies elsewhere, and may be another effect's or the base's.")
+                     f"(folds {c['folds_improved']}/{c['folds_informative']}), but its held-out gain in "
+                     f"{c['not_where_it_shows']}, where its physics must show, is {100 * (c['gain_where'] or 0.0):+.1f} % "
+                     f"(folds {c['folds_where']}; it must be ≥ {100 * self.settings.min_gain:.0f} % there, in most "
+                     f"folds): what it takes up lies elsewhere, and may be another effect's or the base's.")
         for c in self.unused:
             L.append(f"Passed, not named: {c['name']} improved the held-out prediction beside a free steady curve, but "
                      f"in the model written (n, σ1 and S(v) refitted with it) it removes only {100 * c['own_gain']:.1f} % "
@@ -2107,11 +2119,16 @@ class Diagnosis:
             L.append(f"  {s['label']:44s} {s['rms']:.4g} ({s['rms'] / nz:.2f} × noise)   "
                      f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
             if s.get("params"):
-                L.append("      " + format_values(s["name"], s["params"], self.params_before.units, s.get("sd")))
+                own = "" if "params_decided" in s else f"the file's {s.get('name') or 'effect'}, refitted with it: "
+                L.append("      " + own + format_values(s["name"], s["params"], self.params_before.units, s.get("sd")))
             if s.get("params_decided") and s.get("params") and s["params_decided"] != s["params"]:
                 # σ counts the move from the value the folds' spread belongs to: show where that was
                 L.append("      decided beside the free steady curve: "
                          + format_values(s["name"], s["params_decided"], self.params_before.units))
+        if len(self.effects) > 1:
+            L.append("Effects as written to the file (the last step's model, every effect refitted together):")
+            for e in self.written_effects():
+                L.append(f"  {e['name']:22s} " + format_values(e["name"], e["params"], self.params_before.units, e["sd"]))
         L.append("Per regime (RMS before → after the refit → final, the model written; the noise floor of that "
                  "regime's samples):")
         for k, r in self.regimes.items():
@@ -2756,6 +2773,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant (and inertia)
         if wf.entries:
             st["params"] = dict(wf.entries[-1]["params"])
+            if st["name"] is None:  # the alternative's row: the file's own effect, refitted with it
+                st["name"] = wf.entries[-1]["name"]
         if "params_decided" in st:  # a step that named an effect (the alternative's may carry the file's own)
             st["sd"] = with_model_shift(st["sd"], st["params_decided"], st["params"])
         step_preds.append(wf.pred)
@@ -2775,7 +2794,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                              f"not clearly better (under {STEADY_MIN_GAIN:.0%} less, or the file's within "
                              f"{STEADY_MISFIT:g} noise sds): the file's kept"))
     if params.model == "leuven":
-        levels = [getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
+        # the values as written: the common level g is baked into the forces and σ1 (``bake``)
+        levels = [final.g * getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
                   for sd in ("positive", "negative") for k in ("Fs", "Fc")]
         # σ1 refits within a factor SIGMA1_REFIT_MAX of the file's (``refit_transition``): at that bound the
         # record wants it further, and the value written is a bound, not an estimate
@@ -2784,14 +2804,14 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                     if _at_range_end(final_base.sigma1, s1_ends) else "")
         n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further)"
                    if _at_range_end(final_base.n, N_REFIT) else "")
-        cmp_.notes.append(f"the model written (every step; no free steady curve) refits, besides the level, the "
-                          f"stiffness and the effects: "
+        cmp_.notes.append(f"the model written (every step; no free steady curve) refits, besides the level "
+                          f"(×{final.g:.4g}, in the values that follow), the stiffness and the effects: "
                           f"n {params.n:.3g} → {final_base.n:.3g}{n_bound}, "
-                          f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}"
+                          f"σ1 {params.sigma1:.3g} → {final.g * final_base.sigma1:.3g}"
                           f"{s1_bound}, "
                           f"the S(v) levels ×{min(levels):.3f} … ×{max(levels):.3f}"
                           + (", the transition curve's segments" if refit_curve else "")
-                          + ("" if named else " (nothing named: the parameter file is left as it was)"))
+                          + ("" if named or s.refit_base else " (nothing named: the parameter file is left as it was)"))
     if cmp_.inertia is not None:
         # the gaps of the model alone (as given, and written) leave eq. (8)'s I free beside it, so
         # that an inertia off in the file is not a friction misfit; it is not written: on a

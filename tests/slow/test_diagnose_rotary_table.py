@@ -71,3 +71,28 @@ def test_its_control_names_nothing_against_a_noise_floor_that_counts_the_coloure
     L = int(next(re.search(r"averaged over (\d+) samples", n).group(1) for n in rep["notes"] if "eq. (8) averaged" in n))
     expected = _averaged_torque_noise(L)
     assert 0.8 * expected < rep["noise"] < 1.4 * expected, (rep["noise"], expected, L)
+
+
+@pytest.mark.slow
+def test_a_load_beside_a_ripple_is_written_as_the_report_lists_it_within_its_sigma(tmp_path, capsys):
+    # both effects named; each step's line has its effect as refitted at that step, and the
+    # report lists them as written to the file, refitted together: the file is what it lists,
+    # and each value there is within 3 σ of the simulator's (σ: the folds' and the model's move)
+    from leuven_friction.identify.paramfile import load_params
+
+    _, rep, written = _run(tmp_path, "load_ripple")
+    assert set(rep["effects"]) == {"normal_load", "position_ripple"}, rep["effects"]
+    assert "Effects as written to the file" in capsys.readouterr().out
+    listed = {e["name"]: e for e in rep["written_effects"]}
+    p = load_params(written)
+    for i, e in enumerate(p.effects):
+        assert e["params"] == pytest.approx(listed[e["name"]]["params"])
+        for k, sd in listed[e["name"]]["sd"].items():
+            assert p.uncertainty[f"effects.{i}.params.{k}"] == pytest.approx(sd)
+    case = R.CASES["load_ripple"]
+    a_true, wavelength, _ = case["ripple"]  # (amplitude, wavelength in rad, phase)
+    truth = {("normal_load", "alpha"): case["alpha"], ("position_ripple", "a"): a_true,
+             ("position_ripple", "wavelength"): wavelength}
+    for (name, k), v in truth.items():
+        e = listed[name]
+        assert abs(e["params"][k] - v) < 3 * e["sd"][k], (name, k, e, v)
