@@ -45,8 +45,7 @@ def diagnosis_html(d, source: str) -> str:
             [[c["name"], f"{100 * c['heldout_gain']:.1f} %", f"{c['folds_improved']}/{c['folds_informative']}",
               c["unsettled"]] for c in d.unsettled]
             + [[c["name"], f"{100 * c['heldout_gain']:.1f} %", f"{c['folds_improved']}/{c['folds_informative']}",
-                f"its held-out gain in {c['not_where_it_shows']}, where its physics must show, is "
-                f"{100 * (c['gain_where'] or 0.0):+.1f} % (folds {c['folds_where']})"] for c in d.elsewhere],
+                d.not_where_it_shows(c)] for c in d.elsewhere],
             ["candidate", "held-out gain", "folds", "why it is not named"])
     return f"""<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>{title}</title>

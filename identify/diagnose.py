@@ -253,25 +253,23 @@ class NoiseColour:
                 f"differences of block means at rest); the noise floor counts it")
 
 
-def _averaged_over_white(raw: np.ndarray, rest: np.ndarray, block: int) -> tuple[float, int]:
-    """(sd of ``raw`` averaged over ``block`` samples / its white-noise value sd_Δ/√2/√block,
-    third differences counted), from the means of consecutive blocks inside each run of
-    ``rest``; third differences (variance 20·σ_m² for independent means) remove whatever the
-    force does there up to quadratically in time (a ramp, a slow swing). Neighbouring means of
-    a noise correlated over many samples are correlated too, and their differences read low:
-    an AR(1) noise with ρ = 0.96 averaged over 100 samples reads 8.5 for 10.3."""
-    edges = np.diff(np.concatenate([[0], rest.astype(np.int8), [0]]))
+def _averaged_over_white(raw: np.ndarray, runs: list, white: float, block: int) -> tuple[float, int]:
+    """(sd of ``raw`` averaged over ``block`` samples / its white-noise value ``white``/√block,
+    third differences counted), from the means of consecutive blocks inside each of the rest
+    ``runs`` ((start, end) sample ranges); third differences (variance 20·σ_m² for independent
+    means) remove whatever the force does there up to quadratically in time (a ramp, a slow
+    swing). Neighbouring means of a noise correlated over many samples are correlated too, and
+    their differences read low: an AR(1) noise with ρ = 0.96 averaged over 100 samples reads
+    8.5 for 10.3."""
     d3 = []
-    for a, b in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):
+    for a, b in runs:
         n = (b - a) // block
         if n >= 4:
             d3.append(np.diff(raw[a:a + n * block].reshape(n, block).mean(axis=1), 3))
     count = sum(map(len, d3))
-    both = rest[1:] & rest[:-1]
-    white = _mad_sd(np.diff(raw)[both]) / math.sqrt(2.0 * block) if both.sum() >= 20 else 0.0
     if count < COLOUR_MIN_DIFFERENCES or white <= 0.0:
         return float("nan"), count
-    return _mad_sd(np.concatenate(d3)) / math.sqrt(20.0) / white, count
+    return _mad_sd(np.concatenate(d3)) / math.sqrt(20.0) / (white / math.sqrt(block)), count
 
 
 def noise_colour(raw: np.ndarray, rest: np.ndarray, average: int) -> NoiseColour:
@@ -300,12 +298,16 @@ def noise_colour(raw: np.ndarray, rest: np.ndarray, average: int) -> NoiseColour
     blocks = colour_blocks(L)
     if blocks[0] < 2:
         return NoiseColour(1.0, float("nan"), blocks[0], blocks[0], 0, L)
-    shown, count = _averaged_over_white(raw, rest, blocks[0])
+    edges = np.diff(np.concatenate([[0], rest.astype(np.int8), [0]]))
+    runs = list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)))
+    both = rest[1:] & rest[:-1]
+    white = _mad_sd(np.diff(raw)[both]) / math.sqrt(2.0) if both.sum() >= 20 else 0.0  # sample-to-sample, at rest
+    shown, count = _averaged_over_white(raw, runs, white, blocks[0])
     if not shown >= COLOUR_SHOWN:
         return NoiseColour(1.0, shown, blocks[0], blocks[0], count, L)
     factor, sized = shown, blocks[0]
     for block in blocks[1:]:
-        r, _ = _averaged_over_white(raw, rest, block)
+        r, _ = _averaged_over_white(raw, runs, white, block)
         if not (np.isfinite(r) and r <= factor * COLOUR_GROWTH):
             break
         factor, sized = max(factor, r), block
@@ -2027,6 +2029,12 @@ class Diagnosis:
             return []  # such a candidate is named, with that caveat in the notes
         return [c for c in self.candidates if c.get("unsettled") and c.get("evident")]
 
+    def not_where_it_shows(self, c: dict) -> str:
+        """Why a candidate of ``elsewhere`` is not named, in words (the text report and the HTML)."""
+        return (f"its held-out gain in {c['not_where_it_shows']}, where its physics must show, is "
+                f"{100 * (c['gain_where'] or 0.0):+.1f} % (folds {c['folds_where']}; it must be ≥ "
+                f"{100 * self.settings.min_gain:.0f} % there, in most folds)")
+
     @property
     def elsewhere(self) -> list:
         """The last round's candidates that gain held out, but not where their physics must show
@@ -2095,10 +2103,8 @@ class Diagnosis:
                      f"(folds {c['folds_improved']}/{c['folds_informative']}), but {c['unsettled']}.")
         for c in self.elsewhere:
             L.append(f"Seen, not named: {c['name']} improves the held-out prediction by {100 * c['heldout_gain']:.1f} % "
-                     f"(folds {c['folds_improved']}/{c['folds_informative']}), but its held-out gain in "
-                     f"{c['not_where_it_shows']}, where its physics must show, is {100 * (c['gain_where'] or 0.0):+.1f} % "
-                     f"(folds {c['folds_where']}; it must be ≥ {100 * self.settings.min_gain:.0f} % there, in most "
-                     f"folds): what it takes up lies elsewhere, and may be another effect's or the base's.")
+                     f"(folds {c['folds_improved']}/{c['folds_informative']}), but {self.not_where_it_shows(c)}: "
+                     f"what it takes up lies elsewhere, and may be another effect's or the base's.")
         for c in self.unused:
             L.append(f"Passed, not named: {c['name']} improved the held-out prediction beside a free steady curve, but "
                      f"in the model written (n, σ1 and S(v) refitted with it) it removes only {100 * c['own_gain']:.1f} % "
@@ -2616,9 +2622,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     step_preds = [pred_given_c]
     scored = [pred_given + engine.nuisance(r0, allm, pred_given), null.pred]
     named = []
-    sds = {}  # the named effects' parameter σ (``effect_sds``)
-    decided = {}  # the values those σ belong to: each named effect as fitted beside the free steady curve
-    rounds = [({}, {})]  # (sds, decided) after each round that named an effect: an unused last one goes back a round
+    # after each round that named an effect: its effects' parameter σ (``effect_sds``) and the values
+    # they belong to, each effect as fitted beside the free steady curve; an unused last one goes back a round
+    rounds = [({}, {})]
     # the file's own effects are refitted with every candidate: theirs too (not a held stiffness, HELD_STIFFNESS)
     refitted_prior = {t.name for t in prior_terms if t.name not in HELD_STIFFNESS}
     confounded = []
@@ -2764,10 +2770,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         steps.pop()
         scored.pop()
         written.pop()
-        # the model written is the step before's: so are its effects' σ and the values they belong to
-        rounds.pop()
-        sds, decided = rounds[-1]
+        rounds.pop()  # the model written is the step before's: so are its effects' σ
         engine.set_base(written[-1][1])
+    sds, decided = rounds[-1]
     (null, *_), (final, final_base, final_reid, reidentified) = written[0], written[-1]
     for st, (wf, *_) in zip(steps[1:], written):
         st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant (and inertia)
