@@ -64,6 +64,7 @@ out-of-sample evidence, add it, refit, look again.
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import NamedTuple
@@ -503,14 +504,17 @@ class MotionReading:
     tachometer: tuple | None
     set_by_user: tuple = ()  # the thresholds the user set (``reading_overrides``), not derived
 
-    def note(self) -> str:
-        """The reading in one line, each threshold marked where the user set it."""
+    def note(self, unit: str = "") -> str:
+        """The reading in one line, each threshold marked where the user set it; ``unit``: the
+        position's (the recording's, SI)."""
         cp = self.compared
         mark = lambda k: " (set)" if k in self.set_by_user else ""  # noqa: E731
-        return (f"position noise {cp.sd:.3g} ({f'encoder step {cp.step:.3g}' if cp.step > 0 else 'no encoder step'}); "
-                f"path smoothed over {cp.window} samples{mark('window')} and wiggles below {2 * cp.h:.3g} removed; "
-                f"|v| < {self.v_rest:.3g}{mark('v_rest')} counts as presliding; a reversal counts from "
-                f"{self.min_excursion:.3g}{mark('min_excursion')} of back-travel (settable: `diagnose --threshold "
+        x = f" {unit}" if unit else ""
+        v = f" {unit}/s" if unit else ""
+        return (f"position noise {cp.sd:.3g}{x} ({f'encoder step {cp.step:.3g}{x}' if cp.step > 0 else 'no encoder step'}); "
+                f"path smoothed over {cp.window} samples{mark('window')} and wiggles below {2 * cp.h:.3g}{x} removed; "
+                f"|v| < {self.v_rest:.3g}{v}{mark('v_rest')} counts as presliding; a reversal counts from "
+                f"{self.min_excursion:.3g}{x}{mark('min_excursion')} of back-travel (settable: `diagnose --threshold "
                 f"NAME=VALUE`, {', '.join(READING_SETTABLE)})")
 
 
@@ -659,7 +663,7 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     t, x, dt, vel, v_noise, v_rest, min_exc = m.t, m.x, m.dt, m.velocity, m.v_noise, m.v_rest, m.min_excursion
     cp = m.compared
     sdx, w, path = cp.sd, cp.window, cp.path
-    notes = [m.note()]
+    notes = [m.note(rec.units.get("position", ""))]
     if rec.friction is not None:
         meas = np.asarray(rec.friction, dtype=np.float64)
         cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, rec.force, 0.0, sdx, w, min_exc, v_rest,
@@ -2156,7 +2160,8 @@ class Diagnosis:
             elif c.get("where"):
                 why = (f"  in {c['where']}: {-100 * c['gain_where']:+.1f} %, folds {c['folds_where']}"
                        + (" — not enough" if c.get("not_where_it_shows") else ""))
-            if c.get("unsettled"):
+            if c.get("unsettled") and c.get("evident"):
+                # (only where it is what stops it: one short of the bar anyway needs no second reason)
                 why += f"  — {c['unsettled']}"
             beside = f"  (beside {c['beside']})" if c.get("beside") else ""
             if not c.get("cross_validated", True):
@@ -2839,12 +2844,15 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     rms_alt = _rms((meas - null.pred)[allm])
     if not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0 and rms0 > BASE_OFF_NOISE * cmp_.noise:
         # (a model within two noise floors is at the noise level, whatever a refit gains there)
-        fitted_here = rec.source in (params.provenance or {}).get("data", [])
+        # (by file name: a fit given the path from elsewhere made the same file)
+        prov0 = params.provenance or {}
+        fitted_here = os.path.basename(rec.source) in {os.path.basename(str(d)) for d in prov0.get("data", [])}
         cmp_.notes.append(f"nothing named, so the model written is the one given, which leaves {rms0:.4g}; the "
                           f"base refitted alone (the alternative) leaves {rms_alt:.4g} — "
                           f"the base, not a missing effect, is what is off: "
-                          + ("the fit of this recording holds or misses what the refit moves (see its held "
-                             "parameters, and the refit's values above)" if fitted_here else
+                          + (f"the {'diagnosis' if 'diagnosis' in prov0 else 'fit'} of this recording that made "
+                             f"the file holds or misses what the refit moves (see its held parameters, and the "
+                             f"refit's values above)" if fitted_here else
                              "fit it to this recording (`leuven-friction fit`) or give --params closer to it")
                           + ("; the base refitted alone as the model written is what is written (--refit-base)"
                              if rebased else f"; `diagnose --refit-base --out` writes the base refitted alone as the "
@@ -2864,12 +2872,21 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # the σ of the named effects and of the file's own (``effect_sds``, from the last round);
         # a held entry (rate_stiffness) and the fixed parameters (a reference, a start, a
         # threshold) get none: they were not estimated
-        unc.update({f"effects.{i}.params.{k}": sd for i, e in enumerate(final.entries)
-                    for k, sd in with_model_shift(sds.get(e["name"], {}), decided.get(e["name"], {}),
-                                                  e["params"]).items() if math.isfinite(sd)})
+        written_sd = [with_model_shift(sds.get(e["name"], {}), decided.get(e["name"], {}), e["params"])
+                      for e in final.entries]
+        # a shape whose amplitude the data do not tell from none (a second harmonic's phase) is
+        # not an estimate: no σ, and provenance.held says why
+        loose = {f"effects.{i}.params.{k}": f"not determined: {why}; the value is where the fit left it"
+                 for i, (e, sd) in enumerate(zip(final.entries, written_sd))
+                 for k, why in EFFECTS[e["name"]].undetermined(e["params"], sd).items()}
+        unc.update({f"effects.{i}.params.{k}": v for i, sd in enumerate(written_sd) for k, v in sd.items()
+                    if math.isfinite(v) and f"effects.{i}.params.{k}" not in loose})
         prov = dict(params.provenance)
+        held_before = {k: v for k, v in (prov.get("held") or {}).items() if not k.startswith("effects.")}
+        if held_before or loose:
+            prov["held"] = {**held_before, **loose}
         written_params = bake(final_base.replace(effects=()), final.g, final.k0)
-        moved = moved_from_held(prov.get("held"), params, written_params, final.g, refit_curve)
+        moved = moved_from_held(held_before, params, written_params, final.g, refit_curve)
         if moved:
             # no longer held at the value the fit's provenance gives (F_s "held at F_c", n "fixed
             # at 7"): the entry goes, and provenance.diagnosis says where the refit took it

@@ -46,6 +46,9 @@ class EffectParam:
     description: str
     lo_open: bool = False  # the bound itself is excluded
     default: float | None = None  # the value a parameter file may leave out (None: required)
+    # the amplitude this shape parameter means nothing without (a ripple's phase without its
+    # amplitude, a drift's τ without its change): ``Effect.undetermined``
+    shape_of: str | None = None
 
     def unit_in(self, units: Mapping[str, str]) -> str:
         """This parameter's unit in a parameter set's ``units`` ("" for a pure number)."""
@@ -149,6 +152,7 @@ class Context:
         return _kept(self._phase, key, PHASES_KEPT, 2 * self.time.size, make)
 
 
+SHAPE_SIGMAS = 2.0  # an amplitude within this many σ of no effect leaves its shape parameters undetermined
 PHASES_KEPT = 3  # wavelengths whose sines a context keeps
 FACTORS_KEPT = 6  # effects' factors a context keeps
 CACHE_FLOATS = 8_000_000  # … and at most this many floats per cache (64 MB), however long the motion
@@ -194,6 +198,20 @@ class Effect:
     def without(self, values: Mapping[str, float]) -> dict:
         """``values`` with the effect's amplitudes at ``neutral``: its shape kept, its factor 1."""
         return {**values, **self.neutral}
+
+    def undetermined(self, values: Mapping[str, float], sd: Mapping[str, float] | None) -> dict[str, str]:
+        """{shape parameter: why} for each one whose amplitude (``EffectParam.shape_of``) is
+        within SHAPE_SIGMAS σ of no effect: the data then show no such term, so neither where
+        it lies nor how fast it comes — a phase of a second harmonic at 0.8 σ of its amplitude
+        once read "1.14 ± 2.4 rad", a number that says nothing. Nothing without that σ."""
+        out = {}
+        sd = sd or {}
+        for p in self.params:
+            a = p.shape_of
+            s = sd.get(a) if a is not None else None
+            if a in values and s is not None and math.isfinite(s) and abs(values[a] - self.neutral.get(a, 0.0)) < SHAPE_SIGMAS * s:
+                out[p.name] = f"{a} = {values[a]:.2g} ± {s:.2g} is within {SHAPE_SIGMAS:g} σ of {self.neutral.get(a, 0.0):g}"
+        return out
 
     def validate(self, values, path: str) -> dict:
         if not isinstance(values, Mapping):
@@ -279,7 +297,7 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
     Effect("time_drift", "friction drifts in time as a first-order approach (warm-up of the lubricant, a "
            "temperature settling with time constant τ)", "friction",
            (EffectParam("b", "1", -0.95, 20.0, "relative change of friction once settled"),
-            EffectParam("tau", "time", 0.0, 1e12, "time constant of the approach", lo_open=True),
+            EffectParam("tau", "time", 0.0, 1e12, "time constant of the approach", lo_open=True, shape_of="b"),
             EffectParam("t0", "time", -1e12, 1e12, "start of the approach")),
            ("time",), _drift, "repeat one test at fixed load and position after the machine has warmed up",
            {"b": 0.0}),
@@ -291,16 +309,19 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
     Effect("position_ripple", "friction varies periodically with position (gear teeth, ball circulation, "
            "a wavy guide)", "friction",
            (EffectParam("a", "1", 0.0, 0.95, "relative amplitude"),
-            EffectParam("wavelength", "position", 0.0, 1e12, "period along the position", lo_open=True),
-            EffectParam("phase", "rad", -1e3, 1e3, "phase at position 0"),
+            EffectParam("wavelength", "position", 0.0, 1e12, "period along the position", lo_open=True,
+                        shape_of="a"),
+            EffectParam("phase", "rad", -1e3, 1e3, "phase at position 0", shape_of="a"),
             EffectParam("a2", "1", 0.0, 0.5, "relative amplitude of the second harmonic", default=0.0),
-            EffectParam("phase2", "rad", -1e3, 1e3, "phase of the second harmonic at position 0", default=0.0)),
+            EffectParam("phase2", "rad", -1e3, 1e3, "phase of the second harmonic at position 0", default=0.0,
+                        shape_of="a2")),
            ("position",), _ripple, "move over the same positions at different times and speeds",
            {"a": 0.0, "a2": 0.0}),
     Effect("cyclic_softening", "the presliding spring softens (h < 0) or hardens (h > 0) with the number of "
            "significant reversals, saturating", "stiffness",
            (EffectParam("h", "1", -0.95, 20.0, "relative stiffness change once saturated"),
-            EffectParam("n_c", "reversals", 0.0, 1e12, "reversals to reach 63 % of the change", lo_open=True),
+            EffectParam("n_c", "reversals", 0.0, 1e12, "reversals to reach 63 % of the change", lo_open=True,
+                        shape_of="h"),
             EffectParam("min_excursion", "position", 0.0, 1e12, "smallest back-travel counted as a reversal")),
            ("reversals",), _softening, "alternate presliding cycles with long rests (time) at a fixed load",
            {"h": 0.0}),
@@ -328,12 +349,16 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
 def format_values(name: str, values: Mapping[str, float], units: Mapping[str, str],
                   sd: Mapping[str, float] | None = None) -> str:
     """"h = -0.589 ± 0.04, n_c = 8.78 ± 1.2 reversals, …": an effect's values with their units,
-    and the 1-σ of those that were estimated (``sd``; a value without one was held)."""
+    and the 1-σ of those that were estimated (``sd``; a value without one was held). A shape
+    parameter whose amplitude the data do not tell from no effect (``Effect.undetermined``) is
+    said to be not determined instead of given a σ."""
     eff = EFFECTS.get(name)
     unit = {p.name: p.unit_in(units) for p in eff.params} if eff is not None else {}
     sd = sd or {}
-    return ", ".join(f"{k} = {v:.4g}" + (f" ± {sd[k]:.2g}" if k in sd and math.isfinite(sd[k]) else "")
-                     + (f" {unit[k]}" if unit.get(k) else "") for k, v in values.items())
+    loose = eff.undetermined(values, sd) if eff is not None else {}
+    return ", ".join(f"{k} = {v:.4g}" + (f" ± {sd[k]:.2g}" if k in sd and math.isfinite(sd[k]) and k not in loose else "")
+                     + (f" {unit[k]}" if unit.get(k) else "")
+                     + (f" (not determined: {loose[k]})" if k in loose else "") for k, v in values.items())
 
 
 def effect_of(name) -> Effect:

@@ -326,6 +326,6 @@ def test_a_reading_threshold_set_reaches_the_report_marked(tmp_path, capsys):
     assert rc == 0
     res = json.loads(out.read_text())
     assert res["settings"]["reading"] == {"v_rest": 0.002, "min_excursion": 0.001}
-    assert "|v| < 0.002 (set) counts as presliding" in res["notes"][0]
-    assert "0.001 (set) of back-travel" in res["notes"][0] and "samples (set)" not in res["notes"][0]
-    assert "|v| < 0.002 (set)" in text
+    assert "|v| < 0.002 rad/s (set) counts as presliding" in res["notes"][0]
+    assert "0.001 rad (set) of back-travel" in res["notes"][0] and "samples (set)" not in res["notes"][0]
+    assert "|v| < 0.002 rad/s (set)" in text

@@ -253,6 +253,28 @@ def test_effect_values_are_printed_with_the_units_of_the_parameter_set():
         "h = -0.5999 ± 0.068, n_c = 22.04 ± 3.6 reversals, min_excursion = 7.9e-07 m"
 
 
+def test_a_shape_whose_amplitude_is_within_two_sigma_of_none_is_said_not_determined():
+    # a second harmonic whose amplitude is 0.75 σ from zero: where it lies says nothing, so its
+    # phase gets no σ; the fundamental's phase, 22 σ from zero, keeps its σ
+    from leuven_friction.model.effects import EFFECTS, format_values
+
+    ripple = {"a": 0.089, "wavelength": 0.0827, "phase": 2.38, "a2": 0.0055, "phase2": 1.14}
+    sd = {"a": 0.004, "wavelength": 0.0006, "phase": 0.057, "a2": 0.0073, "phase2": 2.4}
+    assert set(EFFECTS["position_ripple"].undetermined(ripple, sd)) == {"phase2"}
+    txt = format_values("position_ripple", ripple, {"position": "rad"}, sd)
+    assert "phase = 2.38 ± 0.057 rad" in txt
+    assert "phase2 = 1.14 rad (not determined: a2 = 0.0055 ± 0.0073 is within 2 σ of 0)" in txt
+    # a drift of b = 0.01 ± 0.02 has no time constant to speak of; at b = 0.1 ± 0.02 it has
+    drift = {"b": 0.01, "tau": 30.0, "t0": 0.0}
+    assert set(EFFECTS["time_drift"].undetermined(drift, {"b": 0.02, "tau": 50.0})) == {"tau"}
+    assert EFFECTS["time_drift"].undetermined({**drift, "b": 0.1}, {"b": 0.02, "tau": 5.0}) == {}
+    # a softening's sign does not matter: h = −0.3 ± 0.05 is 6 σ from none
+    assert EFFECTS["cyclic_softening"].undetermined({"h": -0.3, "n_c": 9.0, "min_excursion": 1e-6},
+                                                     {"h": 0.05, "n_c": 2.0}) == {}
+    # without the amplitude's σ (held, or not estimated) nothing is judged
+    assert EFFECTS["position_ripple"].undetermined(ripple, {}) == {}
+
+
 def test_significant_reversals_step_up_at_each_turning_point():
     # a zigzag through known extrema, sampled so each extremum is a sample: the count steps by
     # one exactly at every turning point whose back-travel exceeds the threshold, and stays
