@@ -1275,6 +1275,24 @@ class Engine:
         self._steadies = []  # [SteadyAlong], the same way
         self.sims = 0
         self.free_inertia = False  # the model written: eq. (8)'s inertia left free beside it (``model_nuisance``)
+        # the friction effects' factor a presliding range following them follows, where it is held
+        # (``following_held``); None: the current one, every simulation keyed by the friction effects
+        self.follow = None
+        self._follow_token = 0
+
+    def following_held(self, entries) -> None:
+        """Hold the factor a presliding range following the friction effects follows at that of
+        ``entries``' friction effects (None: follow the current ones again). A stiffness
+        candidate and the alternative it must beat are then both fitted with the friction
+        effects free but the stiffness following them as that alternative fitted them: a
+        Jacobian column of a friction effect asks for no simulation, where otherwise each of
+        them, a ripple's five and a load's one, simulates the whole record (on a rotary table
+        made apart, two thirds of a diagnosis naming a load and a ripple went to the softening
+        candidate's cross-validation)."""
+        self._follow_token += 1
+        self.follow = None
+        if entries is not None and follows_friction(entries):
+            self.follow = effect_scales([e for e in entries if EFFECTS[e["name"]].acts_on == "friction"], self.ctx)[0]
 
     def loss(self) -> dict:
         """Least-squares loss: plain in friction; in position, soft-L1 beyond a few noise
@@ -1323,7 +1341,7 @@ class Engine:
         self.p = params.replace(effects=())
 
     def scales(self, g: float, k0: float, entries) -> tuple[np.ndarray, np.ndarray | None]:
-        fs, ss = effect_scales(entries, self.ctx)
+        fs, ss = effect_scales(entries, self.ctx, self.follow)
         fs = np.full(len(self.c.time), g) if fs is None else g * fs
         ss = None if (ss is None and k0 == 1.0) else (np.full(len(self.c.time), k0) if ss is None else k0 * ss)
         return fs, ss
@@ -1334,9 +1352,9 @@ class Engine:
         if c.space == "friction":
             # the simulation depends on the stiffness effects only, unless one follows the friction
             # effects' factor (``presliding_range``): then on theirs too
-            everything = follows_friction(entries)
-            key = (k0, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
-                             if everything or EFFECTS[e["name"]].acts_on == "stiffness"))
+            everything = follows_friction(entries) and self.follow is None
+            key = (k0, self._follow_token, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
+                                                 if everything or EFFECTS[e["name"]].acts_on == "stiffness"))
             return c.filtered(fs * self._simulated(key, ss))
         return self._windows(fs, ss)
 
@@ -2654,6 +2672,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         for j, name in enumerate(todo):
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
             alt = beside_stiffness if (beside_stiffness is not None and EFFECTS[name].acts_on == "stiffness") else plain
+            # a stiffness candidate, and the alternative it must beat, follow the friction effects as
+            # that alternative fitted them (``Engine.following_held``)
+            engine.following_held(alt.fit.entries if alt is beside_stiffness else None)
             rss_null = alt.fit.rss
             options = fit_candidate(engine, name, cmp_, strokes, alt, allm, k0, s.softening_thresholds)
             if not options:
@@ -2692,6 +2713,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                                  fr.pred - alt.fit.pred, fr, failed_where, where_name, gain_there, folds_there,
                                  alt, rms_a, term.unsettled(fr.u[len(fr.u) - len(term.free):], strokes),
                                  fold_entries))
+        engine.following_held(None)
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         cands_out = [e.as_dict(s) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
         winner = None

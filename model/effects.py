@@ -430,15 +430,17 @@ def _products(pairs, ctx: Context, fs, ss):
     return fs, ss
 
 
-def effect_scales(effects, ctx: Context) -> tuple[np.ndarray | None, np.ndarray | None]:
+def effect_scales(effects, ctx: Context, follow: np.ndarray | None = None) -> tuple[np.ndarray | None, np.ndarray | None]:
     """(friction_scale, stiffness_scale): the product of every effect's factor, or None where
     no effect acts. An effect that follows the friction effects (``friction_factor`` in its
-    ``needs``) is evaluated after them, on their product."""
+    ``needs``) is evaluated after them, on their product — or on ``follow``, a factor given
+    (``identify.diagnose``'s stiffness candidates follow the one their alternative fitted)."""
     pairs = [(effect_of(e["name"]), e) for e in effects]
     following = [(f, e) for f, e in pairs if _follows(f)]
     fs, ss = _products([(f, e) for f, e in pairs if not _follows(f)], ctx, None, None)
     if following:
-        fs, ss = _products(following, ctx.with_friction_factor(np.ones(ctx.time.shape) if fs is None else fs), fs, ss)
+        m = follow if follow is not None else (np.ones(ctx.time.shape) if fs is None else fs)
+        fs, ss = _products(following, ctx.with_friction_factor(m), fs, ss)
     return fs, ss
 
 

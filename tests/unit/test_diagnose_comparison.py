@@ -867,3 +867,40 @@ def test_a_candidate_that_gains_held_out_but_not_where_it_must_show_is_seen_else
     assert d["elsewhere"] and not d["evident"] and d["not_where_it_shows"] == "steady sliding"
     # no held-out gain at all: neither named nor said to be seen
     assert not ev(np.full(5, 1.05), "steady sliding").elsewhere(s)
+
+
+def test_a_stiffness_following_the_friction_effects_held_at_a_fit_is_exact_there_and_simulates_less(kuka):
+    # A presliding range that follows a load's factor, held at the factor of one set of entries:
+    # the prediction there is the one that follows the current factor, to rounding; away from
+    # it the stiffness stays where it was held (the presliding response differs, the sliding
+    # level follows the new load law), and moving the load's exponent, a friction effect only,
+    # asks for no new simulation of the record.
+    from leuven_friction.identify.data import Recording
+    from leuven_friction.identify.diagnose import Engine, comparison_of
+
+    t = np.arange(0.0, 8.0, 1e-3)
+    x = 2e-3 * np.sin(2 * np.pi * 0.5 * t) * (1 + 0.5 * np.sin(2 * np.pi * 0.13 * t))
+    load = 100.0 * (1.0 + 0.4 * np.sin(2 * np.pi * 0.21 * t))
+    rec = Recording(time=t, position=x, friction=np.zeros_like(t), normal_load=load)
+    eng = Engine(kuka, comparison_of(rec, kuka))
+    at = [{"name": "normal_load", "params": {"N0": 100.0, "alpha": 0.8}},
+          {"name": "presliding_range", "params": {"e": 0.7}}]
+    moved = [{"name": "normal_load", "params": {"N0": 100.0, "alpha": 1.1}}, at[1]]
+    exact_at, exact_moved = eng.predict(1.0, 1.0, at), eng.predict(1.0, 1.0, moved)
+    eng.following_held(at)
+    held_at = eng.predict(1.0, 1.0, at)
+    before = eng.sims
+    held_moved = eng.predict(1.0, 1.0, moved)
+    assert eng.sims == before
+    scale = np.max(np.abs(exact_at))
+    assert np.max(np.abs(held_at - exact_at)) < 1e-12 * scale
+    # the held stiffness is a different model away from the anchor: not the exact one in
+    # presliding, but in gross sliding (the fastest tenth of the motion, far past any turn) the
+    # load law acts in full, as the stiffness no longer matters there
+    assert np.max(np.abs(held_moved - exact_moved)) > 1e-6 * scale
+    v = np.gradient(x, t)
+    fast = np.abs(v) > 0.9 * np.max(np.abs(v))
+    assert np.max(np.abs(held_moved - exact_moved)[fast]) < 1e-3 * scale
+    # released, it follows the current factor again
+    eng.following_held(None)
+    assert np.max(np.abs(eng.predict(1.0, 1.0, moved) - exact_moved)) == 0.0
