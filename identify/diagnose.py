@@ -1288,11 +1288,14 @@ class Engine:
         Jacobian column of a friction effect asks for no simulation, where otherwise each of
         them, a ripple's five and a load's one, simulates the whole record (on a rotary table
         made apart, two thirds of a diagnosis naming a load and a ripple went to the softening
-        candidate's cross-validation)."""
-        self._follow_token += 1
-        self.follow = None
+        candidate's cross-validation). Exact at those entries; the folds' refits move the
+        friction effects a little, and where a stiffness candidate is named its round's σ of
+        the friction effects are of those refits."""
+        follow = None
         if entries is not None and follows_friction(entries):
-            self.follow = effect_scales([e for e in entries if EFFECTS[e["name"]].acts_on == "friction"], self.ctx)[0]
+            follow = effect_scales([e for e in entries if EFFECTS[e["name"]].acts_on == "friction"], self.ctx)[0]
+        self._follow_token += 1  # (the simulations kept while following the current factor stay valid: 0 in their key)
+        self.follow = follow
 
     def loss(self) -> dict:
         """Least-squares loss: plain in friction; in position, soft-L1 beyond a few noise
@@ -1353,7 +1356,7 @@ class Engine:
             # the simulation depends on the stiffness effects only, unless one follows the friction
             # effects' factor (``presliding_range``): then on theirs too
             everything = follows_friction(entries) and self.follow is None
-            key = (k0, self._follow_token, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
+            key = (k0, self._follow_token if self.follow is not None else 0, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
                                                  if everything or EFFECTS[e["name"]].acts_on == "stiffness"))
             return c.filtered(fs * self._simulated(key, ss))
         return self._windows(fs, ss)
@@ -2866,15 +2869,18 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     rms_alt = _rms((meas - null.pred)[allm])
     if not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0 and rms0 > BASE_OFF_NOISE * cmp_.noise:
         # (a model within two noise floors is at the noise level, whatever a refit gains there)
-        # (by file name: a fit given the path from elsewhere made the same file)
+        # by the file's name (a fit given the path from elsewhere made the same file), the
+        # diagnosis's own record first
         prov0 = params.provenance or {}
-        fitted_here = os.path.basename(rec.source) in {os.path.basename(str(d)) for d in prov0.get("data", [])}
+        name = os.path.basename(rec.source)
+        made_by = next((what for what, key in (("diagnosis", "diagnosed"), ("fit", "data"))
+                        if name in {os.path.basename(str(d)) for d in prov0.get(key, [])}), None)
+        fitted_here = made_by is not None
         cmp_.notes.append(f"nothing named, so the model written is the one given, which leaves {rms0:.4g}; the "
                           f"base refitted alone (the alternative) leaves {rms_alt:.4g} — "
                           f"the base, not a missing effect, is what is off: "
-                          + (f"the {'diagnosis' if 'diagnosis' in prov0 else 'fit'} of this recording that made "
-                             f"the file holds or misses what the refit moves (see its held parameters, and the "
-                             f"refit's values above)" if fitted_here else
+                          + (f"the {made_by} of {name} that made the file holds or misses what the refit moves "
+                             f"(see its held parameters, and the refit's values above)" if fitted_here else
                              "fit it to this recording (`leuven-friction fit`) or give --params closer to it")
                           + ("; the base refitted alone as the model written is what is written (--refit-base)"
                              if rebased else f"; `diagnose --refit-base --out` writes the base refitted alone as the "
@@ -2905,8 +2911,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                     if math.isfinite(v) and f"effects.{i}.params.{k}" not in loose})
         prov = dict(params.provenance)
         held_before = {k: v for k, v in (prov.get("held") or {}).items() if not k.startswith("effects.")}
+        prov.pop("held", None)  # (an older file's entries of its effects go: their indices are the old file's)
         if held_before or loose:
             prov["held"] = {**held_before, **loose}
+        # the recordings diagnosed, beside the fit's ``data``: a later diagnosis's advice names which made the file
+        prov["diagnosed"] = [*[d for d in prov.get("diagnosed", []) if d != rec.source], rec.source]
         written_params = bake(final_base.replace(effects=()), final.g, final.k0)
         moved = moved_from_held(held_before, params, written_params, final.g, refit_curve)
         if moved:

@@ -46,9 +46,13 @@ class EffectParam:
     description: str
     lo_open: bool = False  # the bound itself is excluded
     default: float | None = None  # the value a parameter file may leave out (None: required)
-    # the amplitude this shape parameter means nothing without (a ripple's phase without its
-    # amplitude, a drift's τ without its change): ``Effect.undetermined``
-    shape_of: str | None = None
+    # the amplitudes this shape parameter means nothing without, all of them (a ripple's phase
+    # without its amplitude, its wavelength without either harmonic, a drift's τ without its
+    # change): ``Effect.undetermined``
+    shape_of: tuple[str, ...] = ()
+    # for an amplitude that is the magnitude of a sine and cosine pair, the phase of that pair
+    # (``Effect.undetermined`` judges it as a magnitude, not as a signed value)
+    polar_with: str | None = None
 
     def unit_in(self, units: Mapping[str, str]) -> str:
         """This parameter's unit in a parameter set's ``units`` ("" for a pure number)."""
@@ -153,6 +157,7 @@ class Context:
 
 
 SHAPE_SIGMAS = 2.0  # an amplitude within this many σ of no effect leaves its shape parameters undetermined
+POLAR_SHOWN = 2.45  # … a magnitude within this many σ of its parts (√ of χ²₂'s 95 % point, 5.99)
 PHASES_KEPT = 3  # wavelengths whose sines a context keeps
 FACTORS_KEPT = 6  # effects' factors a context keeps
 CACHE_FLOATS = 8_000_000  # … and at most this many floats per cache (64 MB), however long the motion
@@ -200,18 +205,36 @@ class Effect:
         return {**values, **self.neutral}
 
     def undetermined(self, values: Mapping[str, float], sd: Mapping[str, float] | None) -> dict[str, str]:
-        """{shape parameter: why} for each one whose amplitude (``EffectParam.shape_of``) is
-        within SHAPE_SIGMAS σ of no effect: the data then show no such term, so neither where
-        it lies nor how fast it comes — a phase of a second harmonic at 0.8 σ of its amplitude
-        once read "1.14 ± 2.4 rad", a number that says nothing. Nothing without that σ."""
-        out = {}
+        """{shape parameter: why} for each one whose amplitudes (``EffectParam.shape_of``) are
+        all told from no effect by less than ``amplitude_shown``: the data then show no such
+        term, so neither where it lies nor how fast it comes — a second harmonic's phase at 0.8
+        σ of its amplitude once read "1.14 ± 2.4 rad", a number that says nothing. An amplitude
+        without a σ (held) is not judged."""
         sd = sd or {}
-        for p in self.params:
-            a = p.shape_of
-            s = sd.get(a) if a is not None else None
-            if a in values and s is not None and math.isfinite(s) and abs(values[a] - self.neutral.get(a, 0.0)) < SHAPE_SIGMAS * s:
-                out[p.name] = f"{a} = {values[a]:.2g} ± {s:.2g} is within {SHAPE_SIGMAS:g} σ of {self.neutral.get(a, 0.0):g}"
-        return out
+        weak = {p.name: why for p in self.params if (why := self.amplitude_not_shown(p.name, values, sd))}
+        return {p.name: "; ".join(weak[a] for a in p.shape_of) for p in self.params
+                if p.shape_of and all(a in weak for a in p.shape_of)}
+
+    def amplitude_not_shown(self, name: str, values: Mapping[str, float], sd: Mapping[str, float]) -> str | None:
+        """Why the amplitude ``name`` is not told from its neutral value, or None. A signed
+        amplitude (a drift's b, a softening's h): within SHAPE_SIGMAS σ of it. A magnitude of a
+        sine and cosine pair (a ripple's a with its phase φ): its two components have σ_c =
+        √((σ_a² + (a·σ_φ)²)/2) each, and with none there the magnitude exceeds POLAR_SHOWN·σ_c
+        in 5 % of records only (χ² with two degrees of freedom) — against σ_a alone, noise would
+        pass 2 σ in 42 % (a Rayleigh magnitude's mean is 1.9 of its sd)."""
+        p = next(q for q in self.params if q.name == name)
+        s = sd.get(name)
+        if name not in values or s is None or not math.isfinite(s):
+            return None
+        x = values[name]
+        d = abs(x - self.neutral.get(name, 0.0))
+        sp = sd.get(p.polar_with) if p.polar_with else None
+        if sp is not None and math.isfinite(sp):
+            sc = math.sqrt((s * s + (x * sp) ** 2) / 2.0)
+            return (f"{name} = {x:.2g} is within {POLAR_SHOWN:g} σ of 0 (σ {sc:.2g} of its sine and cosine parts, from "
+                    f"± {s:.2g} and its phase's ± {sp:.2g})") if d <= POLAR_SHOWN * sc else None
+        return (f"{name} = {x:.2g} ± {s:.2g} is within {SHAPE_SIGMAS:g} σ of {self.neutral.get(name, 0.0):g}"
+                if d <= SHAPE_SIGMAS * s else None)
 
     def validate(self, values, path: str) -> dict:
         if not isinstance(values, Mapping):
@@ -297,7 +320,7 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
     Effect("time_drift", "friction drifts in time as a first-order approach (warm-up of the lubricant, a "
            "temperature settling with time constant τ)", "friction",
            (EffectParam("b", "1", -0.95, 20.0, "relative change of friction once settled"),
-            EffectParam("tau", "time", 0.0, 1e12, "time constant of the approach", lo_open=True, shape_of="b"),
+            EffectParam("tau", "time", 0.0, 1e12, "time constant of the approach", lo_open=True, shape_of=("b",)),
             EffectParam("t0", "time", -1e12, 1e12, "start of the approach")),
            ("time",), _drift, "repeat one test at fixed load and position after the machine has warmed up",
            {"b": 0.0}),
@@ -308,20 +331,21 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
            {"alpha": 0.0}),
     Effect("position_ripple", "friction varies periodically with position (gear teeth, ball circulation, "
            "a wavy guide)", "friction",
-           (EffectParam("a", "1", 0.0, 0.95, "relative amplitude"),
+           (EffectParam("a", "1", 0.0, 0.95, "relative amplitude", polar_with="phase"),
             EffectParam("wavelength", "position", 0.0, 1e12, "period along the position", lo_open=True,
-                        shape_of="a"),
-            EffectParam("phase", "rad", -1e3, 1e3, "phase at position 0", shape_of="a"),
-            EffectParam("a2", "1", 0.0, 0.5, "relative amplitude of the second harmonic", default=0.0),
+                        shape_of=("a", "a2")),
+            EffectParam("phase", "rad", -1e3, 1e3, "phase at position 0", shape_of=("a",)),
+            EffectParam("a2", "1", 0.0, 0.5, "relative amplitude of the second harmonic", default=0.0,
+                        polar_with="phase2"),
             EffectParam("phase2", "rad", -1e3, 1e3, "phase of the second harmonic at position 0", default=0.0,
-                        shape_of="a2")),
+                        shape_of=("a2",))),
            ("position",), _ripple, "move over the same positions at different times and speeds",
            {"a": 0.0, "a2": 0.0}),
     Effect("cyclic_softening", "the presliding spring softens (h < 0) or hardens (h > 0) with the number of "
            "significant reversals, saturating", "stiffness",
            (EffectParam("h", "1", -0.95, 20.0, "relative stiffness change once saturated"),
             EffectParam("n_c", "reversals", 0.0, 1e12, "reversals to reach 63 % of the change", lo_open=True,
-                        shape_of="h"),
+                        shape_of=("h",)),
             EffectParam("min_excursion", "position", 0.0, 1e12, "smallest back-travel counted as a reversal")),
            ("reversals",), _softening, "alternate presliding cycles with long rests (time) at a fixed load",
            {"h": 0.0}),

@@ -254,8 +254,10 @@ def test_effect_values_are_printed_with_the_units_of_the_parameter_set():
 
 
 def test_a_shape_whose_amplitude_is_within_two_sigma_of_none_is_said_not_determined():
-    # a second harmonic whose amplitude is 0.75 σ from zero: where it lies says nothing, so its
-    # phase gets no σ; the fundamental's phase, 22 σ from zero, keeps its σ
+    # a second harmonic of magnitude 0.0055 whose sine and cosine parts have σ 0.011 each
+    # (√((0.0073² + (0.0055·2.4)²)/2)): pure noise passes 2.45 such σ in 5 % of records, this
+    # one does not, so where it lies says nothing and its phase gets no σ; the fundamental,
+    # 0.089 against parts of σ 0.0046, keeps its phase's σ
     from leuven_friction.model.effects import EFFECTS, format_values
 
     ripple = {"a": 0.089, "wavelength": 0.0827, "phase": 2.38, "a2": 0.0055, "phase2": 1.14}
@@ -263,10 +265,18 @@ def test_a_shape_whose_amplitude_is_within_two_sigma_of_none_is_said_not_determi
     assert set(EFFECTS["position_ripple"].undetermined(ripple, sd)) == {"phase2"}
     txt = format_values("position_ripple", ripple, {"position": "rad"}, sd)
     assert "phase = 2.38 ± 0.057 rad" in txt
-    assert "phase2 = 1.14 rad (not determined: a2 = 0.0055 ± 0.0073 is within 2 σ of 0)" in txt
-    # a drift of b = 0.01 ± 0.02 has no time constant to speak of; at b = 0.1 ± 0.02 it has
+    assert "phase2 = 1.14 rad (not determined: a2 = 0.0055 is within 2.45 σ of 0 (σ 0.011 of its" in txt
+    # the wavelength is the period of both harmonics: undetermined only when neither shows
+    weak_fundamental = {**ripple, "a": 0.001, "a2": 0.05}
+    sd2 = {**sd, "a": 0.002, "phase": 3.0, "a2": 0.002, "phase2": 0.04}
+    assert set(EFFECTS["position_ripple"].undetermined(weak_fundamental, sd2)) == {"phase"}
+    assert set(EFFECTS["position_ripple"].undetermined({**weak_fundamental, "a2": 0.001},
+                                                       {**sd2, "phase2": 3.0})) == {"phase", "phase2", "wavelength"}
+    # a drift of b = 0.01 ± 0.02, or of b = −0.03 ± 0.02, has no time constant to speak of; at
+    # b = 0.1 ± 0.02 it has
     drift = {"b": 0.01, "tau": 30.0, "t0": 0.0}
     assert set(EFFECTS["time_drift"].undetermined(drift, {"b": 0.02, "tau": 50.0})) == {"tau"}
+    assert set(EFFECTS["time_drift"].undetermined({**drift, "b": -0.03}, {"b": 0.02, "tau": 50.0})) == {"tau"}
     assert EFFECTS["time_drift"].undetermined({**drift, "b": 0.1}, {"b": 0.02, "tau": 5.0}) == {}
     # a softening's sign does not matter: h = −0.3 ± 0.05 is 6 σ from none
     assert EFFECTS["cyclic_softening"].undetermined({"h": -0.3, "n_c": 9.0, "min_excursion": 1e-6},

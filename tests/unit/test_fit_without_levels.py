@@ -178,7 +178,7 @@ def test_a_diagnosis_of_its_own_fit_says_the_fit_is_what_misses_not_to_fit_again
     d = diagnose(rec, fits[0].params)
     assert d.effects == []
     off = [n for n in d.notes if "is what is off" in n]
-    assert off and "the fit of this recording" in off[0] and "leuven-friction fit" not in off[0], d.text()
+    assert off and "the fit of si.csv that made the file" in off[0] and "leuven-friction fit" not in off[0], d.text()
 
 
 def test_the_base_refitted_alone_is_written_when_asked_and_closes_the_loop(fits):
@@ -202,6 +202,10 @@ def test_the_base_refitted_alone_is_written_when_asked_and_closes_the_loop(fits)
     path.write_text(params_to_yaml(d.params_after.validate()))
     again = diagnose(rec, load_params(str(path)))
     assert again.rms_before == pytest.approx(d.rms_after, rel=0.02), (again.rms_before, d.rms_after)
+    # the file records the recording it was diagnosed on; a diagnosis of it names that, not a fit
+    assert list(load_params(str(path)).provenance["diagnosed"]) == ["si.csv"]
+    off = [n for n in again.notes if "is what is off" in n]
+    assert not off or "the diagnosis of si.csv that made the file" in off[0], off
 
 
 def test_a_fit_at_the_noise_floor_is_not_said_to_be_off():
