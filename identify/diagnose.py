@@ -1356,8 +1356,9 @@ class Engine:
             # the simulation depends on the stiffness effects only, unless one follows the friction
             # effects' factor (``presliding_range``): then on theirs too
             everything = follows_friction(entries) and self.follow is None
-            key = (k0, self._follow_token if self.follow is not None else 0, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
-                                                 if everything or EFFECTS[e["name"]].acts_on == "stiffness"))
+            held = self._follow_token if self.follow is not None else 0
+            key = (k0, held, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
+                                   if everything or EFFECTS[e["name"]].acts_on == "stiffness"))
             return c.filtered(fs * self._simulated(key, ss))
         return self._windows(fs, ss)
 

@@ -206,7 +206,7 @@ class Effect:
 
     def undetermined(self, values: Mapping[str, float], sd: Mapping[str, float] | None) -> dict[str, str]:
         """{shape parameter: why} for each one whose amplitudes (``EffectParam.shape_of``) are
-        all told from no effect by less than ``amplitude_shown``: the data then show no such
+        not told from no effect (``amplitude_not_shown``): the data then show no such
         term, so neither where it lies nor how fast it comes — a second harmonic's phase at 0.8
         σ of its amplitude once read "1.14 ± 2.4 rad", a number that says nothing. An amplitude
         without a σ (held) is not judged."""
