@@ -2317,12 +2317,11 @@ SPEED_ORDER_RHO = 0.8  # |ρ| from which speeds in order confound a drift with S
 SAME_SPEED = math.log(1.25)  # consecutive stretches this close in speed, same direction: one hold
 
 
-def speed_order(time: np.ndarray, velocity: np.ndarray, steady: np.ndarray, min_samples: int = 10) -> SpeedOrder:
-    """|Spearman's ρ| between the time and the speed |v| of each hold of steady sliding (each
-    hold counted once, however long): a sweep that visits its speed levels in order has |ρ|
-    near 1, and then S(v)'s shape fitted to it takes up any slow change in time. A hold is a
-    run of consecutive stretches of steady sliding in one direction at speeds within 25 % of
-    each other (at a slow level an encoder's steps break the steadiness into fragments)."""
+def steady_holds(time: np.ndarray, velocity: np.ndarray, steady: np.ndarray, min_samples: int = 10) -> np.ndarray:
+    """The holds of steady sliding, one row each: (mean time, mean ln|v|, direction). A hold is
+    a run of consecutive stretches of steady sliding in one direction at speeds within 25 % of
+    each other (at a slow level an encoder's steps break the steadiness into fragments); one
+    shorter than ``min_samples`` is left out."""
     edges = np.flatnonzero(np.diff(np.r_[0, steady.astype(np.int8), 0]))
     holds = []  # [samples, Σ samples·t, Σ samples·ln|v|, sign]
     for a, b in zip(edges[::2], edges[1::2]):
@@ -2334,8 +2333,30 @@ def speed_order(time: np.ndarray, velocity: np.ndarray, steady: np.ndarray, min_
             holds[-1][2] += n * ls
         else:
             holds.append([n, n * float(np.mean(time[a:b])), n * ls, sg])
-    holds = [h for h in holds if h[0] >= min_samples]
-    return _rank_order(np.array([h[1] / h[0] for h in holds]), np.array([h[2] / h[0] for h in holds]))
+    return np.array([(h[1] / h[0], h[2] / h[0], h[3]) for h in holds if h[0] >= min_samples]).reshape(-1, 3)
+
+
+def speed_order(time: np.ndarray, velocity: np.ndarray, steady: np.ndarray, min_samples: int = 10) -> SpeedOrder:
+    """|Spearman's ρ| between the time and the speed |v| of each hold of steady sliding
+    (``steady_holds``; each hold counted once, however long): a sweep that visits its speed
+    levels in order has |ρ| near 1, and then S(v)'s shape fitted to it takes up any slow change
+    in time."""
+    h = steady_holds(time, velocity, steady, min_samples)
+    return _rank_order(h[:, 0], h[:, 1])
+
+
+REVISIT_SHARE = 0.25  # two holds at one speed and direction this share of the session apart: a level visited again
+
+
+def levels_revisited(holds: np.ndarray, span: float) -> int:
+    """How many holds (``steady_holds``) have another at the same speed (within SAME_SPEED) and
+    direction at least REVISIT_SHARE of the session's ``span`` away in time. With none, the free
+    steady curve the decision compares beside holds each level at the one time it was visited,
+    and a slow drift is taken up level by level, whatever the order of the levels."""
+    t, ls, sg = holds[:, 0], holds[:, 1], holds[:, 2]
+    same = (np.abs(ls[:, None] - ls[None, :]) < SAME_SPEED) & (sg[:, None] == sg[None, :])
+    far = np.abs(t[:, None] - t[None, :]) >= REVISIT_SHARE * span
+    return int(np.sum(np.any(same & far, axis=1)))
 
 
 def stroke_order(reversals: np.ndarray, velocity: np.ndarray, v_rest: float, min_samples: int = 5) -> SpeedOrder:
@@ -2620,7 +2641,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # a session starts with presliding). The load is measured, not made by the motion: a load
     # effect is judged wherever the load varies.
     sliding = steady_sliding(cmp_)
-    order = speed_order(cmp_.time, cmp_.velocity, sliding & allm)
+    holds = steady_holds(cmp_.time, cmp_.velocity, sliding & allm)
+    order = _rank_order(holds[:, 0], holds[:, 1])  # (``speed_order``)
     if "time_drift" in s.candidates and abs(order.rho) >= SPEED_ORDER_RHO:
         # a drift in time is then a slope of S(v) as well: the base's S(v) refit and the free
         # steady curve the decision compares beside take part of it up before time_drift is tried
@@ -2804,6 +2826,16 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         rounds.pop()  # the model written is the step before's: so are its effects' σ
         engine.set_base(written[-1][1])
     sds, decided = rounds[-1]
+    if "time_drift" in named and len(holds) >= 4 and abs(order.rho) < SPEED_ORDER_RHO:
+        span = float(cmp_.time[allm][-1] - cmp_.time[allm][0]) if allm.any() else 0.0
+        if levels_revisited(holds, span) == 0:
+            # (where the levels follow time, the note on the speed order above says more)
+            cmp_.notes.append(f"no speed level of the steady sliding is visited again later in the session ({len(holds)} "
+                              f"holds): beside the free steady curve each level holds a drift's value at its one visit, "
+                              f"so the drift was decided on the changes within holds and at the transitions, and a "
+                              f"slow one reads short and small (τ and |b| may be below the contact's: on a rotary table "
+                              f"made apart, τ = 12.9 ± 3.3 s for 44.3). To tell: visit a speed level again late in the "
+                              f"session")
     (null, *_), (final, final_base, final_reid, reidentified) = written[0], written[-1]
     for st, (wf, *_) in zip(steps[1:], written):
         st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant (and inertia)

@@ -129,6 +129,29 @@ def test_speed_order_tells_a_sweep_in_order_from_one_that_returns():
     assert speed_order(t, sweep, sweep != 0, min_samples=401).count == 0
 
 
+def test_a_level_visited_again_late_is_told_from_levels_visited_once():
+    # shuffled levels, each forward and back once: no level is visited again, whatever the
+    # order; the slowest one repeated at the session's end makes two holds (its first visit and
+    # the last) per direction that have a twin far away in time; a level's forward and backward
+    # holds, adjacent in time, are not a revisit (other directions)
+    from leuven_friction.identify.diagnose import levels_revisited, steady_holds
+
+    levels = [0.3, 0.01, 1.0, 0.1, 3.0, 0.03]
+    once = _holds([s * lv for lv in levels for s in (1, -1)])
+    t = np.arange(len(once)) * 1e-3
+    h = steady_holds(t, once, once != 0)
+    assert len(h) == 12 and levels_revisited(h, t[-1] - t[0]) == 0
+    again = _holds([s * lv for lv in levels + [0.3] for s in (1, -1)])
+    t2 = np.arange(len(again)) * 1e-3
+    h2 = steady_holds(t2, again, again != 0)
+    assert len(h2) == 14 and levels_revisited(h2, t2[-1] - t2[0]) == 4
+    # the same repeat right after the first visit is no revisit late in the session
+    near = _holds([s * lv for lv in [0.3] + levels for s in (1, -1)])
+    t3 = np.arange(len(near)) * 1e-3
+    h3 = steady_holds(t3, near, near != 0)
+    assert levels_revisited(h3, t3[-1] - t3[0]) == 0
+
+
 def test_stroke_order_follows_the_reversals_not_the_transitions_or_dwells():
     # strokes between reversals, each from rest through a transition (a ramp up to the stroke's
     # speed) and back to a dwell: speeds doubling with every second reversal (the generator's
