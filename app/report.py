@@ -40,12 +40,11 @@ def diagnosis_html(d, source: str) -> str:
             [[" / ".join(c["effects"]), f"{c['correlation']:.2f}", " vs ".join(f"{100 * g:.1f} %" for g in c["gains"]),
               c["experiment"]] for c in d.confounded],
             ["candidates", "correlation of corrections", "held-out gains", "experiment that separates them"])
-    if d.unsettled or d.elsewhere:
+    seen = d.seen_not_named()
+    if seen:
         conf += "<h2>Seen, not named</h2>" + _table(
-            [[c["name"], f"{100 * c['heldout_gain']:.1f} %", f"{c['folds_improved']}/{c['folds_informative']}",
-              c["unsettled"]] for c in d.unsettled]
-            + [[c["name"], f"{100 * c['heldout_gain']:.1f} %", f"{c['folds_improved']}/{c['folds_informative']}",
-                d.not_where_it_shows(c)] for c in d.elsewhere],
+            [[c["name"], f"{100 * c['heldout_gain']:.1f} %", f"{c['folds_improved']}/{c['folds_informative']}", why]
+             for c, why in seen],
             ["candidate", "held-out gain", "folds", "why it is not named"])
     return f"""<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>{title}</title>

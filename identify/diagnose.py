@@ -2067,6 +2067,13 @@ class Diagnosis:
         (``Evidence.elsewhere``): not named, and said."""
         return [c for c in self.candidates if c.get("elsewhere") and not c.get("significant")]
 
+    def seen_not_named(self) -> list:
+        """[(candidate, why it is not named)] of the last round's candidates the evidence shows
+        but the diagnosis does not name (``unsettled``, then ``elsewhere``): the text report and
+        the HTML list the same ones for the same reasons."""
+        return ([(c, c["unsettled"]) for c in self.unsettled]
+                + [(c, self.not_where_it_shows(c)) for c in self.elsewhere])
+
     def not_named(self) -> list:
         """What the evidence shows but the diagnosis does not name, one short line each: an
         effect seen that is not seen to settle within the session (with ``Settings.must_settle``),
@@ -2124,13 +2131,11 @@ class Diagnosis:
                      "physics must show.")
         else:
             L.append("No missing effect named: nothing improves the held-out prediction in most folds.")
-        for c in self.unsettled:
+        for c, why in self.seen_not_named():
             L.append(f"Seen, not named: {c['name']} improves the held-out prediction by {100 * c['heldout_gain']:.1f} % "
-                     f"(folds {c['folds_improved']}/{c['folds_informative']}), but {c['unsettled']}.")
-        for c in self.elsewhere:
-            L.append(f"Seen, not named: {c['name']} improves the held-out prediction by {100 * c['heldout_gain']:.1f} % "
-                     f"(folds {c['folds_improved']}/{c['folds_informative']}), but {self.not_where_it_shows(c)}: "
-                     f"what it takes up lies elsewhere, and may be another effect's or the base's.")
+                     f"(folds {c['folds_improved']}/{c['folds_informative']}), but {why}"
+                     + (": what it takes up lies elsewhere, and may be another effect's or the base's." if c.get("elsewhere")
+                        else "."))
         for c in self.unused:
             L.append(f"Passed, not named: {c['name']} improved the held-out prediction beside a free steady curve, but "
                      f"in the model written (n, σ1 and S(v) refitted with it) it removes only {100 * c['own_gain']:.1f} % "
@@ -2341,8 +2346,12 @@ def speed_order(time: np.ndarray, velocity: np.ndarray, steady: np.ndarray, min_
     (``steady_holds``; each hold counted once, however long): a sweep that visits its speed
     levels in order has |ρ| near 1, and then S(v)'s shape fitted to it takes up any slow change
     in time."""
-    h = steady_holds(time, velocity, steady, min_samples)
-    return _rank_order(h[:, 0], h[:, 1])
+    return holds_order(steady_holds(time, velocity, steady, min_samples))
+
+
+def holds_order(holds: np.ndarray) -> SpeedOrder:
+    """``speed_order`` of holds already made (``steady_holds``)."""
+    return _rank_order(holds[:, 0], holds[:, 1])
 
 
 REVISIT_SHARE = 0.25  # two holds at one speed and direction this share of the session apart: a level visited again
@@ -2642,7 +2651,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # effect is judged wherever the load varies.
     sliding = steady_sliding(cmp_)
     holds = steady_holds(cmp_.time, cmp_.velocity, sliding & allm)
-    order = _rank_order(holds[:, 0], holds[:, 1])  # (``speed_order``)
+    order = holds_order(holds)
     if "time_drift" in s.candidates and abs(order.rho) >= SPEED_ORDER_RHO:
         # a drift in time is then a slope of S(v) as well: the base's S(v) refit and the free
         # steady curve the decision compares beside take part of it up before time_drift is tried

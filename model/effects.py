@@ -211,7 +211,8 @@ class Effect:
         σ of its amplitude once read "1.14 ± 2.4 rad", a number that says nothing. An amplitude
         without a σ (held) is not judged."""
         sd = sd or {}
-        weak = {p.name: why for p in self.params if (why := self.amplitude_not_shown(p.name, values, sd))}
+        amplitudes = {a for p in self.params for a in p.shape_of}
+        weak = {a: why for a in amplitudes if (why := self.amplitude_not_shown(a, values, sd))}
         return {p.name: "; ".join(weak[a] for a in p.shape_of) for p in self.params
                 if p.shape_of and all(a in weak for a in p.shape_of)}
 
