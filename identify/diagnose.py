@@ -1353,14 +1353,22 @@ class Engine:
         fs, ss = self.scales(g, k0, entries)
         c = self.c
         if c.space == "friction":
-            # the simulation depends on the stiffness effects only, unless one follows the friction
-            # effects' factor (``presliding_range``): then on theirs too
-            everything = follows_friction(entries) and self.follow is None
-            held = self._follow_token if self.follow is not None else 0
-            key = (k0, held, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
-                                   if everything or EFFECTS[e["name"]].acts_on == "stiffness"))
-            return c.filtered(fs * self._simulated(key, ss))
+            return c.filtered(fs * self._simulated(self.sim_key(k0, entries), ss))
         return self._windows(fs, ss)
+
+    def sim_key(self, k0: float, entries) -> tuple:
+        """What the simulation in friction space depends on besides the base: κ0 and the
+        stiffness effects, and the friction effects too where one of them follows their factor
+        (``presliding_range``) and that factor is not held (``following_held``)."""
+        everything = follows_friction(entries) and self.follow is None
+        held = self._follow_token if self.follow is not None else 0
+        return (k0, held, tuple((e["name"], tuple(sorted(e["params"].items()))) for e in entries
+                                if everything or EFFECTS[e["name"]].acts_on == "stiffness"))
+
+    def simulated(self, k0: float, entries) -> np.ndarray:
+        """The friction simulated along the path (friction space), before the friction factor
+        and the filter: what ``predict`` multiplies by the factor and filters."""
+        return self._simulated(self.sim_key(k0, entries), self.scales(1.0, k0, entries)[1])
 
     def _simulated(self, key, ss) -> np.ndarray:
         """The friction simulated along the path for the base and the stiffness ``key``, from
@@ -1426,9 +1434,8 @@ def _thinned(mask: np.ndarray) -> np.ndarray:
     return idx[::stride]
 
 
-def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k0: bool, k0: float,
-         max_nfev: int = 60) -> FitResult:
-    """Least squares over log g, (log κ0), and every term's free parameters, on ``mask``."""
+def _fit_bounds(terms: list, fit_k0: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Bounds of ``_fit``'s vector: log g, (log κ0), every term's free parameters."""
     lo, hi = [-math.log(5.0)], [math.log(5.0)]
     if fit_k0:
         lo.append(-math.log(20.0))
@@ -1437,30 +1444,127 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
         for _, _, a, b in term.free:
             lo.append(a)
             hi.append(b)
-    lo, hi = np.array(lo), np.array(hi)
+    return np.array(lo), np.array(hi)
+
+
+def _unpack(u: np.ndarray, terms: list, fit_k0: bool, k0: float) -> tuple:
+    """(g, κ0, entries) of ``_fit``'s vector (κ0 = ``k0`` where it is not fitted)."""
+    if fit_k0:
+        return math.exp(u[0]), math.exp(u[1]), _entries(terms, u[2:])
+    return math.exp(u[0]), k0, _entries(terms, u[1:])
+
+
+DIFF_STEP = 1e-4  # relative step of ``_fit``'s forward differences (scipy's ``diff_step``)
+
+
+def _stepped(u: np.ndarray, j: int, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """``u`` with its j-th entry moved by the forward-difference step scipy's ``least_squares``
+    takes with ``diff_step`` (the relative step times |u_j|, signed as u_j; √ε·max(1, |u_j|)
+    where that vanishes; turned back where it would leave the bounds), so that a Jacobian
+    made here is the one it would make."""
+    sign = 1.0 if u[j] >= 0.0 else -1.0
+    h = DIFF_STEP * sign * abs(u[j])
+    if (u[j] + h) - u[j] == 0.0:
+        h = math.sqrt(np.finfo(float).eps) * sign * max(1.0, abs(u[j]))
+    if not lo[j] <= u[j] + h <= hi[j] and abs(h) <= max(u[j] - lo[j], hi[j] - u[j]):
+        h = -h
+    out = u.copy()
+    out[j] += h
+    return out
+
+
+@dataclass
+class StiffnessChord:
+    """The simulated friction's derivative in each entry of a fit's vector that changes the
+    simulation (κ0, the stiffness effects, and a friction effect a presliding range follows
+    where its factor is not held), taken once at ``anchor``.
+
+    A fold's refit in cross-validation starts from the fit on every fold and moves little, so
+    its Jacobian keeps those columns at the anchor (a chord method) and computes the others,
+    which only multiply a simulation already made, afresh. Every function value is still the
+    exact simulation: the refit's steps are accepted on the true residual. Without it each
+    Jacobian of a stiffness candidate's fold refit simulated the record once per such entry
+    (on a rotary table made apart, 1,700 of a diagnosis's 2,700 simulations)."""
+
+    anchor: np.ndarray
+    columns: dict  # index in the vector → d(simulated friction)/du_j at the anchor, per sample
+
+    @classmethod
+    def at(cls, engine: Engine, terms: list, u: np.ndarray, fit_k0: bool, k0: float) -> "StiffnessChord | None":
+        """The chord at ``u``, or None where no entry changes the simulation (or the engine
+        compares positions, where every evaluation simulates anyway)."""
+        if engine.c.space != "friction":
+            return None
+        lo, hi = _fit_bounds(terms, fit_k0)
+        u = np.clip(u, lo + 1e-9, hi - 1e-9)
+        _, kk, entries = _unpack(u, terms, fit_k0, k0)
+        key = engine.sim_key(kk, entries)
+        base = engine.simulated(kk, entries)
+        cols = {}
+        for j in range(len(u)):
+            uj = _stepped(u, j, lo, hi)
+            _, kj, ej = _unpack(uj, terms, fit_k0, k0)
+            if engine.sim_key(kj, ej) != key:
+                cols[j] = (engine.simulated(kj, ej) - base) / (uj[j] - u[j])
+        return cls(u, cols) if cols else None
+
+    def jacobian(self, engine: Engine, terms: list, fit_k0: bool, k0: float, idx: np.ndarray, resid):
+        """The Jacobian of ``resid`` (``_fit``'s residual on the samples ``idx``) for
+        ``least_squares``: forward differences, with the simulation of a column in ``columns``
+        moved along the chord instead of simulated again. The chord follows the refit
+        (Broyden's update: after each step the columns are corrected by the least change that
+        makes them reproduce the change of the simulation the step made), on a copy: every
+        refit starts from the anchor's."""
+        lo, hi = _fit_bounds(terms, fit_k0)
+        js = sorted(self.columns)
+        C = np.stack([self.columns[j] for j in js], axis=1)  # samples × chord entries
+        last = [None, None]  # the vector and the simulation of the last Jacobian
+
+        def jac(u):
+            r0 = resid(u)
+            _, kk, entries = _unpack(u, terms, fit_k0, k0)
+            sim = engine.simulated(kk, entries)
+            if last[0] is not None:
+                step = (u - last[0])[js]
+                ss = float(step @ step)
+                if ss > 0.0:
+                    C[...] += np.outer((sim - last[1]) - C @ step, step / ss)
+            last[0], last[1] = u.copy(), sim
+            J = np.empty((len(r0), len(u)))
+            for j in range(len(u)):
+                uj = _stepped(u, j, lo, hi)
+                h = uj[j] - u[j]
+                if j in self.columns:
+                    gj, kj, ej = _unpack(uj, terms, fit_k0, k0)
+                    fs, _ = engine.scales(gj, kj, ej)
+                    rj = engine.residual_at(engine.c.filtered(fs * (sim + h * C[:, js.index(j)])), idx)
+                else:
+                    rj = resid(uj)
+                J[:, j] = (rj - r0) / h
+            return J
+
+        return jac
+
+
+def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k0: bool, k0: float,
+         max_nfev: int = 60, chord: StiffnessChord | None = None) -> FitResult:
+    """Least squares over log g, (log κ0), and every term's free parameters, on ``mask``;
+    with ``chord``, the columns of the entries that change the simulation come from it."""
+    lo, hi = _fit_bounds(terms, fit_k0)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
-
-    def unpack(u):
-        g = math.exp(u[0])
-        i = 1
-        kk = k0
-        if fit_k0:
-            kk = math.exp(u[1])
-            i = 2
-        return g, kk, _entries(terms, u[i:])
-
     idx = _thinned(mask)
     if engine.c.space == "position":
         max_nfev = min(max_nfev, 12)  # every evaluation simulates the whole recording
 
     def resid(u):
-        g, kk, entries = unpack(u)
+        g, kk, entries = _unpack(u, terms, fit_k0, k0)
         m = engine.predict(g, kk, entries)
         return engine.residual_at(m, idx)
 
-    sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-4, max_nfev=max_nfev,
-                        **engine.loss())
-    g, kk, entries = unpack(sol.x)
+    jac = "2-point" if chord is None else chord.jacobian(engine, terms, fit_k0, k0, idx, resid)
+    sol = least_squares(resid, u0, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=DIFF_STEP,
+                        max_nfev=max_nfev, **engine.loss())
+    g, kk, entries = _unpack(sol.x, terms, fit_k0, k0)
     return fit_result(engine, g, kk, entries, sol.x, mask)
 
 
@@ -1947,9 +2051,10 @@ def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list,
     sse = np.zeros(len(masks))
     preds, entries = [], []
     nfev = (CV_NFEV_STIFFNESS if fit_k0 else CV_NFEV) if engine.c.space == "friction" else 5
+    starts = [(tm, u, StiffnessChord.at(engine, tm, u, fit_k0, k0)) for tm, u in ((terms, u_full), *others)]
     for i, held in enumerate(masks):
         train = ~held & engine.scored
-        fits = [_fit(engine, tm, u, train, fit_k0=fit_k0, k0=k0, max_nfev=nfev) for tm, u in ((terms, u_full), *others)]
+        fits = [_fit(engine, tm, u, train, fit_k0=fit_k0, k0=k0, max_nfev=nfev, chord=ch) for tm, u, ch in starts]
         fr = min(fits, key=lambda f: engine.score((meas - f.pred)[train]))
         sse[i] = engine.score((meas - fr.pred)[held])
         preds.append(fr.pred)

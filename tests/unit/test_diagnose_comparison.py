@@ -927,3 +927,64 @@ def test_a_stiffness_following_the_friction_effects_held_at_a_fit_is_exact_there
     # released, it follows the current factor again
     eng.following_held(None)
     assert np.max(np.abs(eng.predict(1.0, 1.0, moved) - exact_moved)) == 0.0
+
+
+def _softening_record(kuka, rng):
+    """A load and a softening over 40 reversals, the friction the engine predicts at known
+    entries plus white noise: (engine, terms, u at the truth, noise sd)."""
+    from leuven_friction.identify.data import Recording
+    from leuven_friction.identify.diagnose import Engine, _entry_to_u, _terms_for, comparison_of
+
+    t = np.arange(0.0, 20.0, 1e-3)
+    x = 2e-3 * np.sin(2 * np.pi * 1.0 * t) * (1 + 0.3 * np.sin(2 * np.pi * 0.07 * t))
+    load = 100.0 * (1.0 + 0.4 * np.sin(2 * np.pi * 0.11 * t))
+    rec = Recording(time=t, position=x, friction=np.zeros_like(t), normal_load=load)
+    cmp_ = comparison_of(rec, kuka)
+    eng = Engine(kuka, cmp_, free_steady=False)
+    terms = [_terms_for("normal_load", cmp_), _terms_for("cyclic_softening", cmp_)]
+    truth = [{"alpha": 0.8}, {"h": -0.4, "n_c": 6.0}]
+    u = np.concatenate([[0.0, math.log(1.3)]] + [_entry_to_u(tm, {**tm.fixed, **p}) for tm, p in zip(terms, truth)])
+    from leuven_friction.identify.diagnose import _unpack
+
+    clean = eng.predict(*_unpack(u, terms, True, 1.0))
+    sd = 0.01 * float(np.std(clean))
+    cmp_.measured = clean + sd * rng.standard_normal(len(t))
+    return eng, terms, u, sd
+
+
+def test_a_chord_jacobian_is_scipys_at_its_anchor_and_a_refit_along_it_simulates_once_a_step(kuka, rng):
+    # The stiffness entries' columns (κ0, h, n_c) come from simulations made once at the
+    # anchor. There the Jacobian is the forward-difference one scipy's least_squares makes
+    # with the same relative step, to rounding. A refit from a start moved off the truth
+    # then asks for one simulation per function value (and none per Jacobian), where the
+    # plain refit simulates every stiffness column of every Jacobian again (it may take
+    # fewer steps); both leave the noise, the function values being the exact simulation.
+    from scipy.optimize._numdiff import approx_derivative
+    from leuven_friction.identify.diagnose import (DIFF_STEP, StiffnessChord, _fit, _fit_bounds, _thinned, _unpack)
+
+    eng, terms, u, sd = _softening_record(kuka, rng)
+    lo, hi = _fit_bounds(terms, True)
+    mask = np.ones(len(eng.c.time), bool)
+    idx = _thinned(mask)
+
+    def resid(w):
+        return eng.residual_at(eng.predict(*_unpack(w, terms, True, 1.0)), idx)
+
+    chord = StiffnessChord.at(eng, terms, u, True, 1.0)
+    assert sorted(chord.columns) == [1, 3, 4]  # κ0, h, n_c; not the level nor the load's α
+    J_chord = chord.jacobian(eng, terms, True, 1.0, idx, resid)(u)
+    J_scipy = approx_derivative(resid, u, method="2-point", rel_step=DIFF_STEP, bounds=(lo, hi))
+    assert np.max(np.abs(J_chord - J_scipy)) <= 1e-9 * np.max(np.abs(J_scipy))
+
+    start = u + np.array([0.05, -0.1, 0.05, 0.05, 0.2])
+    before = eng.sims
+    along = _fit(eng, terms, start, mask, fit_k0=True, k0=1.0, max_nfev=10, chord=chord)
+    sims_along = eng.sims - before
+    before = eng.sims
+    plain = _fit(eng, terms, start, mask, fit_k0=True, k0=1.0, max_nfev=10)
+    sims_plain = eng.sims - before
+    assert sims_along <= 10 + 1  # one per function value (and the final prediction's, cached)
+    assert sims_plain > 2 * sims_along
+    for fit in (along, plain):
+        rms = math.sqrt(fit.rss / len(eng.c.time))
+        assert rms < 1.1 * sd
