@@ -1480,11 +1480,13 @@ class StiffnessChord:
     where its factor is not held), taken once at ``anchor``.
 
     A fold's refit in cross-validation starts from the fit on every fold and moves little, so
-    its Jacobian keeps those columns at the anchor (a chord method) and computes the others,
-    which only multiply a simulation already made, afresh. Every function value is still the
-    exact simulation: the refit's steps are accepted on the true residual. Without it each
-    Jacobian of a stiffness candidate's fold refit simulated the record once per such entry
-    (on a rotary table made apart, 1,700 of a diagnosis's 2,700 simulations)."""
+    its Jacobian takes those columns along a chord from the anchor, corrected after each step
+    (``jacobian``), and computes the others, which only multiply a simulation already made,
+    afresh. Every function value is still the exact simulation: the refit's steps are accepted
+    on the true residual. Without it each Jacobian of a stiffness candidate's fold refit
+    simulated the record once per such entry (on a rotary table made apart, 1,700 of a
+    diagnosis's 2,700 simulations). Not used for the model written's refit, whose n, σ1 and
+    S(v) move too far from its start for a chord (docs/diagnosis-history.md, Speed)."""
 
     anchor: np.ndarray
     columns: dict  # index in the vector → d(simulated friction)/du_j at the anchor, per sample
