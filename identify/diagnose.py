@@ -67,7 +67,7 @@ import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Callable, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -1457,13 +1457,13 @@ def _unpack(u: np.ndarray, terms: list, fit_k0: bool, k0: float) -> tuple:
 DIFF_STEP = 1e-4  # relative step of ``_fit``'s forward differences (scipy's ``diff_step``)
 
 
-def _stepped(u: np.ndarray, j: int, lo: np.ndarray, hi: np.ndarray, rel_step: float) -> np.ndarray:
+def _stepped(u: np.ndarray, j: int, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     """``u`` with its j-th entry moved by the forward-difference step scipy's ``least_squares``
-    takes with ``diff_step=rel_step`` (the relative step times |u_j|, signed as u_j;
-    √ε·max(1, |u_j|) where that vanishes; turned back where it would leave the bounds), so that
-    a Jacobian made here is the one it would make."""
+    takes with ``diff_step`` (the relative step times |u_j|, signed as u_j; √ε·max(1, |u_j|)
+    where that vanishes; turned back where it would leave the bounds), so that a Jacobian
+    made here is the one it would make."""
     sign = 1.0 if u[j] >= 0.0 else -1.0
-    h = rel_step * sign * abs(u[j])
+    h = DIFF_STEP * sign * abs(u[j])
     if (u[j] + h) - u[j] == 0.0:
         h = math.sqrt(np.finfo(float).eps) * sign * max(1.0, abs(u[j]))
     if not lo[j] <= u[j] + h <= hi[j] and abs(h) <= max(u[j] - lo[j], hi[j] - u[j]):
@@ -1473,121 +1473,73 @@ def _stepped(u: np.ndarray, j: int, lo: np.ndarray, hi: np.ndarray, rel_step: fl
     return out
 
 
-@dataclass(frozen=True)
-class FitVector:
-    """How a least-squares vector maps to what the engine predicts: ``unpack(u)`` gives
-    (g, κ0, the base or None for the engine's own, entries); the vector's bounds; the relative
-    step of its forward differences."""
-
-    unpack: Callable
-    lo: np.ndarray
-    hi: np.ndarray
-    rel_step: float
-
-    def simulation(self, engine: Engine, u: np.ndarray) -> np.ndarray:
-        """The simulation ``u`` asks for (the engine's base set to its own where it has one)."""
-        _, kk, p, entries = self.unpack(u)
-        if p is not None:
-            engine.set_base(p)
-        return engine.simulated(kk, entries)
-
-    def identity(self, engine: Engine, u: np.ndarray) -> tuple:
-        """What that simulation depends on: equal for two vectors that share it."""
-        _, kk, p, entries = self.unpack(u)
-        return (p, engine.sim_key(kk, entries))
-
-    def model(self, engine: Engine, u: np.ndarray, sim: np.ndarray) -> np.ndarray:
-        """The prediction of ``u`` with the simulation ``sim`` (its friction factor, filtered)."""
-        g, kk, _, entries = self.unpack(u)
-        return engine.c.filtered(engine.scales(g, kk, entries)[0] * sim)
-
-
-def _fit_vector(terms: list, fit_k0: bool, k0: float) -> FitVector:
-    """``_fit``'s vector: log g, (log κ0), every term's free parameters, on the engine's base."""
-    def unpack(u):
-        g, kk, entries = _unpack(u, terms, fit_k0, k0)
-        return g, kk, None, entries
-
-    lo, hi = _fit_bounds(terms, fit_k0)
-    return FitVector(unpack, lo, hi, DIFF_STEP)
-
-
-def _chord_columns(engine: Engine, vec: FitVector, u: np.ndarray, only=None) -> dict:
-    """Forward differences of the simulation at ``u`` in each entry that changes it (of
-    ``only``, where given): {index: d(simulation)/du_j per sample}."""
-    ident = vec.identity(engine, u)
-    base = vec.simulation(engine, u)
-    cols = {}
-    for j in range(len(u)) if only is None else only:
-        uj = _stepped(u, j, vec.lo, vec.hi, vec.rel_step)
-        if only is not None or vec.identity(engine, uj) != ident:
-            cols[j] = (vec.simulation(engine, uj) - base) / (uj[j] - u[j])
-    return cols
-
-
 @dataclass
-class SimulationChord:
+class StiffnessChord:
     """The simulated friction's derivative in each entry of a fit's vector that changes the
-    simulation, taken once at ``anchor``: κ0, the stiffness effects, a friction effect a
-    presliding range follows where its factor is not held, and in the model written's refit
-    the base's n, σ1 and S(v) levels.
+    simulation (κ0, the stiffness effects, and a friction effect a presliding range follows
+    where its factor is not held), taken once at ``anchor``.
 
-    A refit that starts near its solution takes those columns of its Jacobian along a chord
-    from the anchor, corrected after each step (``jacobian``; the model written's refit, whose
-    n, σ1 and S(v) move further, takes them afresh where the chord missed a step), and computes
-    the others, which only multiply a simulation already made, afresh. Every function value is still the exact
-    simulation: the refit's steps are accepted on the true residual. Without it every Jacobian
+    A fold's refit in cross-validation starts from the fit on every fold and moves little, so
+    its Jacobian takes those columns along a chord from the anchor, corrected after each step
+    (``jacobian``), and computes the others, which only multiply a simulation already made,
+    afresh. Every function value is still the exact simulation: the refit's steps are accepted
+    on the true residual. Without it each Jacobian of a stiffness candidate's fold refit
     simulated the record once per such entry (on a rotary table made apart, 1,700 of a
-    diagnosis's 2,700 simulations went to the softening's fold refits; on a guideway, 3,400 of
-    5,400 to the model written's)."""
+    diagnosis's 2,700 simulations). Not used for the model written's refit, whose n, σ1 and
+    S(v) move too far from its start for a chord (docs/diagnosis-history.md, Speed)."""
 
     anchor: np.ndarray
-    columns: dict  # index in the vector → d(simulation)/du_j at the anchor, per sample
+    columns: dict  # index in the vector → d(simulated friction)/du_j at the anchor, per sample
 
     @classmethod
-    def at(cls, engine: Engine, vec: FitVector, u: np.ndarray) -> "SimulationChord | None":
+    def at(cls, engine: Engine, terms: list, u: np.ndarray, fit_k0: bool, k0: float) -> "StiffnessChord | None":
         """The chord at ``u``, or None where no entry changes the simulation (or the engine
         compares positions, where every evaluation simulates anyway)."""
         if engine.c.space != "friction":
             return None
-        u = np.clip(u, vec.lo + 1e-9, vec.hi - 1e-9)
-        cols = _chord_columns(engine, vec, u)
+        lo, hi = _fit_bounds(terms, fit_k0)
+        u = np.clip(u, lo + 1e-9, hi - 1e-9)
+        _, kk, entries = _unpack(u, terms, fit_k0, k0)
+        key = engine.sim_key(kk, entries)
+        base = engine.simulated(kk, entries)
+        cols = {}
+        for j in range(len(u)):
+            uj = _stepped(u, j, lo, hi)
+            _, kj, ej = _unpack(uj, terms, fit_k0, k0)
+            if engine.sim_key(kj, ej) != key:
+                cols[j] = (engine.simulated(kj, ej) - base) / (uj[j] - u[j])
         return cls(u, cols) if cols else None
 
-    def jacobian(self, engine: Engine, vec: FitVector, idx: np.ndarray, resid, renew: float | None = None):
-        """The Jacobian of ``resid`` (the residual on the samples ``idx``) for
+    def jacobian(self, engine: Engine, terms: list, fit_k0: bool, k0: float, idx: np.ndarray, resid):
+        """The Jacobian of ``resid`` (``_fit``'s residual on the samples ``idx``) for
         ``least_squares``: forward differences, with the simulation of a column in ``columns``
         moved along the chord instead of simulated again. The chord follows the refit
         (Broyden's update: after each step the columns are corrected by the least change that
         makes them reproduce the change of the simulation the step made), on a copy: every
-        refit starts from the anchor's. ``renew``: where the chord missed a step's change of
-        the simulation by more than this share of it, the columns are taken afresh there."""
+        refit starts from the anchor's."""
+        lo, hi = _fit_bounds(terms, fit_k0)
         js = sorted(self.columns)
         C = np.stack([self.columns[j] for j in js], axis=1)  # samples × chord entries
         last = [None, None]  # the vector and the simulation of the last Jacobian
 
         def jac(u):
             r0 = resid(u)
-            sim = vec.simulation(engine, u)
+            _, kk, entries = _unpack(u, terms, fit_k0, k0)
+            sim = engine.simulated(kk, entries)
             if last[0] is not None:
                 step = (u - last[0])[js]
                 ss = float(step @ step)
                 if ss > 0.0:
-                    change = sim - last[1]
-                    miss = change - C @ step
-                    if renew is not None and np.linalg.norm(miss) > renew * np.linalg.norm(change):
-                        fresh = _chord_columns(engine, vec, u, js)
-                        C[...] = np.stack([fresh[j] for j in js], axis=1)
-                        sim = vec.simulation(engine, u)
-                    else:
-                        C[...] += np.outer(miss, step / ss)
+                    C[...] += np.outer((sim - last[1]) - C @ step, step / ss)
             last[0], last[1] = u.copy(), sim
             J = np.empty((len(r0), len(u)))
             for j in range(len(u)):
-                uj = _stepped(u, j, vec.lo, vec.hi, vec.rel_step)
+                uj = _stepped(u, j, lo, hi)
                 h = uj[j] - u[j]
                 if j in self.columns:
-                    rj = engine.residual_at(vec.model(engine, uj, sim + h * C[:, js.index(j)]), idx)
+                    gj, kj, ej = _unpack(uj, terms, fit_k0, k0)
+                    fs, _ = engine.scales(gj, kj, ej)
+                    rj = engine.residual_at(engine.c.filtered(fs * (sim + h * C[:, js.index(j)])), idx)
                 else:
                     rj = resid(uj)
                 J[:, j] = (rj - r0) / h
@@ -1597,7 +1549,7 @@ class SimulationChord:
 
 
 def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k0: bool, k0: float,
-         max_nfev: int = 60, chord: SimulationChord | None = None) -> FitResult:
+         max_nfev: int = 60, chord: StiffnessChord | None = None) -> FitResult:
     """Least squares over log g, (log κ0), and every term's free parameters, on ``mask``;
     with ``chord``, the columns of the entries that change the simulation come from it."""
     lo, hi = _fit_bounds(terms, fit_k0)
@@ -1611,7 +1563,7 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
         m = engine.predict(g, kk, entries)
         return engine.residual_at(m, idx)
 
-    jac = "2-point" if chord is None else chord.jacobian(engine, _fit_vector(terms, fit_k0, k0), idx, resid)
+    jac = "2-point" if chord is None else chord.jacobian(engine, terms, fit_k0, k0, idx, resid)
     sol = least_squares(resid, u0, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=DIFF_STEP,
                         max_nfev=max_nfev, **engine.loss())
     g, kk, entries = _unpack(sol.x, terms, fit_k0, k0)
@@ -1675,13 +1627,9 @@ class TransitionRefit:
     u: np.ndarray
 
 
-TRANSITION_DIFF_STEP = 1e-3  # relative step of ``refit_transition``'s forward differences
-CHORD_RENEW = 0.3  # a chord missing a step's change of the simulation by this share is taken afresh
-
-
 def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_u: np.ndarray,
                      mask: np.ndarray, start: np.ndarray | None = None, max_nfev: int = 40,
-                     refit_curve: bool = False, chord: bool = False) -> TransitionRefit:
+                     refit_curve: bool = False) -> TransitionRefit:
     """Part of the alternative: the level g, the presliding stiffness κ0, the exponent n of
     eq. (5) (how sharply presliding turns into sliding), the micro-viscous σ1 of eq. (3) and
     the levels of S(v) (Fs, Fc per side, each within a factor 1.5), refitted together by output
@@ -1689,9 +1637,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     ``refit_curve``, the rise of a piecewise-linear F_d over each of its segments too (within
     CURVE_FACTOR_MAX): a curve identified on a few presliding branches at the start of a
     session (or on branches an effect distorted) is reshaped by every transition of the whole
-    record. ``start``: a solution vector to start from (the bounds stay those of ``params``).
-    ``chord``: the Jacobian's columns that simulate follow a chord from the start, taken afresh
-    where it misses (``SimulationChord``, CHORD_RENEW), for a refit that starts near its solution."""
+    record. ``start``: a solution vector to start from (the bounds stay those of ``params``)."""
     if params.model != "leuven":
         return TransitionRefit(params, 1.0, 1.0, [], np.zeros(0))
     from ..model import Stribeck, StribeckSide
@@ -1738,13 +1684,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
                          np.full(NC, c), [f[3] for t in terms for f in t.free]])
     u0 = np.concatenate([np.zeros(nb), prior_u]) if start is None else np.asarray(start, float)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
-    jac = "2-point"
-    if chord:
-        vec = FitVector(unpack, lo, hi, TRANSITION_DIFF_STEP)
-        along = SimulationChord.at(engine, vec, u0)
-        if along is not None:
-            jac = along.jacobian(engine, vec, idx, resid, renew=CHORD_RENEW)
-    sol = least_squares(resid, u0, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=TRANSITION_DIFF_STEP,
+    sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3,
                         max_nfev=max_nfev if engine.c.space == "friction" else 15, **engine.loss())
     g, kk, p, entries = unpack(sol.x)
     engine.set_base(p)
@@ -2113,7 +2053,7 @@ def cross_validate(engine: Engine, terms: list, u_full: np.ndarray, masks: list,
     sse = np.zeros(len(masks))
     preds, entries = [], []
     nfev = (CV_NFEV_STIFFNESS if fit_k0 else CV_NFEV) if engine.c.space == "friction" else 5
-    starts = [(tm, u, SimulationChord.at(engine, _fit_vector(tm, fit_k0, k0), u)) for tm, u in ((terms, u_full), *others)]
+    starts = [(tm, u, StiffnessChord.at(engine, tm, u, fit_k0, k0)) for tm, u in ((terms, u_full), *others)]
     for i, held in enumerate(masks):
         train = ~held & engine.scored
         fits = [_fit(engine, tm, u, train, fit_k0=fit_k0, k0=k0, max_nfev=nfev, chord=ch) for tm, u, ch in starts]
@@ -3168,7 +3108,6 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written
-WRITTEN_CHORD = True  # … its simulating columns on a chord from the step's start (``SimulationChord``)
 STEADY_MIN_GAIN = 0.25  # S(v) re-identified for the model written only if it leaves this much less steady gap
 STEADY_MISFIT = 2.0  # … and the file's leaves more than this many times the levels' noise
 
@@ -3296,8 +3235,7 @@ def written_fits(engine: Engine, base: FrictionParams, fits: list, refit_curve: 
         best = None
         for b, us in starts:
             # a refit of a model the decision has already fitted: fewer steps than the alternative's
-            r = refit_transition(engine, b, terms, u[1:], mask, start=us, max_nfev=WRITTEN_NFEV, refit_curve=refit_curve,
-                                 chord=WRITTEN_CHORD)
+            r = refit_transition(engine, b, terms, u[1:], mask, start=us, max_nfev=WRITTEN_NFEV, refit_curve=refit_curve)
             fr = fit_result(engine, r.g, r.k0, r.entries, r.u, mask)
             if b is base:
                 prev = r.u  # the next step starts from the file's S(v) refitted, as well
