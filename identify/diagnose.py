@@ -1503,14 +1503,16 @@ class StiffnessChord:
         u = np.clip(u, lo + 1e-9, hi - 1e-9)
         _, kk, entries = _unpack(u, terms, fit_k0, k0)
         key = engine.sim_key(kk, entries)
-        base = engine.simulated(kk, entries)
-        cols = {}
+        moved = {}  # the steps that change the simulation, found before anything is simulated
         for j in range(len(u)):
             uj = _stepped(u, j, lo, hi)
             _, kj, ej = _unpack(uj, terms, fit_k0, k0)
             if engine.sim_key(kj, ej) != key:
-                cols[j] = (engine.simulated(kj, ej) - base) / (uj[j] - u[j])
-        return cls(u, cols) if cols else None
+                moved[j] = (uj[j] - u[j], kj, ej)
+        if not moved:
+            return None
+        base = engine.simulated(kk, entries)
+        return cls(u, {j: (engine.simulated(kj, ej) - base) / h for j, (h, kj, ej) in moved.items()})
 
     def jacobian(self, engine: Engine, terms: list, fit_k0: bool, k0: float, idx: np.ndarray, resid):
         """The Jacobian of ``resid`` (``_fit``'s residual on the samples ``idx``) for

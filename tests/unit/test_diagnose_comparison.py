@@ -933,7 +933,7 @@ def _softening_record(kuka, rng):
     """A load and a softening over 40 reversals, the friction the engine predicts at known
     entries plus white noise: (engine, terms, u at the truth, noise sd)."""
     from leuven_friction.identify.data import Recording
-    from leuven_friction.identify.diagnose import Engine, _entry_to_u, _terms_for, comparison_of
+    from leuven_friction.identify.diagnose import Engine, _entry_to_u, _terms_for, _unpack, comparison_of
 
     t = np.arange(0.0, 20.0, 1e-3)
     x = 2e-3 * np.sin(2 * np.pi * 1.0 * t) * (1 + 0.3 * np.sin(2 * np.pi * 0.07 * t))
@@ -944,8 +944,6 @@ def _softening_record(kuka, rng):
     terms = [_terms_for("normal_load", cmp_), _terms_for("cyclic_softening", cmp_)]
     truth = [{"alpha": 0.8}, {"h": -0.4, "n_c": 6.0}]
     u = np.concatenate([[0.0, math.log(1.3)]] + [_entry_to_u(tm, {**tm.fixed, **p}) for tm, p in zip(terms, truth)])
-    from leuven_friction.identify.diagnose import _unpack
-
     clean = eng.predict(*_unpack(u, terms, True, 1.0))
     sd = 0.01 * float(np.std(clean))
     cmp_.measured = clean + sd * rng.standard_normal(len(t))
