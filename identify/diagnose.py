@@ -2168,9 +2168,13 @@ class Diagnosis:
 
     def not_where_it_shows(self, c: dict) -> str:
         """Why a candidate of ``elsewhere`` is not named, in words (the text report and the HTML)."""
-        return (f"its held-out gain in {c['not_where_it_shows']}, where its physics must show, is "
-                f"{100 * (c['gain_where'] or 0.0):+.1f} % (folds {c['folds_where']}; it must be ≥ "
-                f"{100 * self.settings.min_gain:.0f} % there, in most folds)")
+        # in the candidates table's terms: the held-out RMS there falls (−) or rises (+), and the
+        # folds are those where it falls
+        g = c["gain_where"] or 0.0
+        better, informative = str(c["folds_where"]).split("/")
+        return (f"in {c['not_where_it_shows']}, where its physics must show, its held-out RMS "
+                f"{'falls' if g > 0 else 'rises'} by {100 * abs(g):.1f} % pooled and falls in {better} of "
+                f"{informative} folds (it must fall by ≥ {100 * self.settings.min_gain:.0f} % there, in most folds)")
 
     @property
     def elsewhere(self) -> list:
