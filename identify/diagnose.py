@@ -148,6 +148,8 @@ class Comparison:
     inertia: float | None = None  # friction from an applied force: the I of eq. (8) it was taken with
     input_noise: np.ndarray | None = None  # the model's friction noise from the position it is driven by
     noise_colour: float = 1.0  # the averaged log's noise over what white noise would leave (``noise_colour``)
+    reading: MotionReading | None = None  # how the motion was read (its note is ``notes[0]``)
+    position_unit: str = ""  # the recording's position unit, for that note
 
     def noise_on(self, mask: np.ndarray) -> float:
         """The noise floor from the samples of ``mask`` alone (a recording's noise need not be
@@ -504,17 +506,21 @@ class MotionReading:
     tachometer: tuple | None
     set_by_user: tuple = ()  # the thresholds the user set (``reading_overrides``), not derived
 
-    def note(self, unit: str = "") -> str:
+    def note(self, unit: str = "", min_excursion: float | None = None, why: str = "") -> str:
         """The reading in one line, each threshold marked where the user set it; ``unit``: the
-        position's (the recording's, SI)."""
+        position's (the recording's, SI). ``min_excursion``: the back-travel the diagnosis
+        counts reversals from, where it is not the reading's own (``reversal_threshold``), and
+        ``why``."""
         cp = self.compared
         mark = lambda k: " (set)" if k in self.set_by_user else ""  # noqa: E731
+        used = self.min_excursion if min_excursion is None else min_excursion
+        because = f" ({why})" if why else ""
         x = f" {unit}" if unit else ""
         v = f" {unit}/s" if unit else ""
         return (f"position noise {cp.sd:.3g}{x} ({f'encoder step {cp.step:.3g}{x}' if cp.step > 0 else 'no encoder step'}); "
                 f"path smoothed over {cp.window} samples{mark('window')} and wiggles below {2 * cp.h:.3g}{x} removed; "
                 f"|v| < {self.v_rest:.3g}{v}{mark('v_rest')} counts as presliding; a reversal counts from "
-                f"{self.min_excursion:.3g}{x}{mark('min_excursion')} of back-travel (settable: `diagnose --threshold "
+                f"{used:.3g}{x}{mark('min_excursion')}{because} of back-travel (settable: `diagnose --threshold "
                 f"NAME=VALUE`, {', '.join(READING_SETTABLE)})")
 
 
@@ -660,10 +666,39 @@ def comparison_of(rec: Recording, params: FrictionParams, space: str = "friction
     if rec.position is None:
         raise DataError(f"{rec.source}: diagnosis needs a position column")
     m = motion_reading(rec, reading)
+    cmp_ = _compared(rec, params, space, m)
+    cmp_.reading, cmp_.position_unit = m, rec.units.get("position", "")
+    return cmp_
+
+
+def reversal_threshold(cmp_: Comparison) -> None:
+    """The back-travel that counts as a significant reversal, once the model's presliding range
+    is known (``cmp_.z_presliding``): a quarter of that range, smaller ones staying on the
+    steep start of the transition curve where they hardly load the contact, or the position's
+    noise where that is larger — unless the user set it (``--threshold min_excursion``), which
+    then holds. The reading's note says the value used and why."""
+    m = cmp_.reading
+    quarter = 0.25 * cmp_.z_presliding
+    if "min_excursion" in m.set_by_user:
+        why = (f"under a quarter of the model's presliding range, {quarter:.3g}, which it would be otherwise"
+               if m.min_excursion < quarter else "")
+        used = m.min_excursion
+    elif quarter > m.min_excursion:
+        why = f"a quarter of the model's presliding range; the position's noise allows {m.min_excursion:.3g}"
+        used = quarter
+    else:
+        why, used = "", m.min_excursion
+    cmp_.min_excursion = used
+    if cmp_.notes:
+        cmp_.notes[0] = m.note(cmp_.position_unit, used, why)
+
+
+def _compared(rec: Recording, params: FrictionParams, space: str, m: MotionReading) -> Comparison:
+    """``comparison_of`` on the motion as read (``motion_reading``)."""
     t, x, dt, vel, v_noise, v_rest, min_exc = m.t, m.x, m.dt, m.velocity, m.v_noise, m.v_rest, m.min_excursion
     cp = m.compared
     sdx, w, path = cp.sd, cp.window, cp.path
-    notes = [m.note(rec.units.get("position", ""))]
+    notes = [m.note(rec.units.get("position", ""))]  # (made again by ``reversal_threshold``)
     if rec.friction is not None:
         meas = np.asarray(rec.friction, dtype=np.float64)
         cmp_ = Comparison("friction", t, meas, path, vel, rec.normal_load, rec.force, 0.0, sdx, w, min_exc, v_rest,
@@ -2651,9 +2686,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                              f"strokes), and {use:.3g}" if seen else f"{use:.3g}")
                           + " is used to tell gross sliding and the shortest ripple")
         cmp_.z_presliding = use
-    # a reversal counts once it travels back over a quarter of the presliding range: smaller
-    # ones stay on the steep start of the transition curve and hardly load the contact
-    cmp_.min_excursion = max(cmp_.min_excursion, 0.25 * cmp_.z_presliding)
+    reversal_threshold(cmp_)
     cmp_.params = params
     meas = cmp_.measured
     n = len(meas)

@@ -795,6 +795,34 @@ def test_a_longer_window_set_by_the_user_reads_slow_sliding_a_short_one_takes_fo
     assert "|v| < 0.001 (set)" in both.note() and "0.0002 (set) of back-travel" in both.note()
 
 
+def test_the_back_travel_a_reversal_needs_is_the_one_the_note_says_and_a_users_setting_holds(tmp_path):
+    # a quarter of the model's presliding range raises the reading's own threshold (the
+    # position's noise), and the reading's note says the value used, not the one raised from;
+    # a value the user set holds, below that quarter too
+    from types import SimpleNamespace
+
+    from leuven_friction.identify.diagnose import motion_reading, reversal_threshold
+
+    rec, *_ = _coarse_encoder_sweep(tmp_path)
+
+    def threshold(overrides, z_presliding):
+        m = motion_reading(rec, overrides)
+        c = SimpleNamespace(reading=m, z_presliding=z_presliding, min_excursion=m.min_excursion,
+                            position_unit="rad", notes=[m.note("rad"), "another note"])
+        reversal_threshold(c)
+        return m, c
+
+    m, c = threshold(None, 4e-3)  # a quarter: 1e-3, over the encoder's 4 steps (1.9e-4)
+    assert m.min_excursion < 1e-3 and c.min_excursion == pytest.approx(1e-3)
+    assert "a reversal counts from 0.001 rad (a quarter of the model's presliding range" in c.notes[0]
+    assert c.notes[1] == "another note"
+    m, c = threshold(None, 1e-4)  # a quarter under the position's noise: the reading's own holds
+    assert c.min_excursion == m.min_excursion and c.notes[0] == m.note("rad")
+    m, c = threshold({"min_excursion": 2e-4}, 4e-3)
+    assert c.min_excursion == 2e-4
+    assert "0.0002 rad (set) (under a quarter of the model's presliding range, 0.001" in c.notes[0]
+
+
 def _ar1_mean_sd(sd_e: float, rho: float, L: int) -> float:
     """sd of the mean of L consecutive samples of AR(1) noise x_k = ρ·x_{k−1} + e_k."""
     k = np.arange(1, L)
