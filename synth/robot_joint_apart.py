@@ -165,7 +165,6 @@ def simulate(effect, seed):
     direction = 0
     extreme = 0.0
     kscale = 1.0
-    Kc = list(K)
 
     log_t = np.empty(n_log)
     log_th = np.empty(n_log)
@@ -264,6 +263,20 @@ def simulate(effect, seed):
     return log_t, pos, tq, log_N, log_F, log_th, info
 
 
+def write_csv(path, effect, t, pos, tq, N):
+    """The recording as a user gets it: time, encoder angle, applied torque (and the normal
+    load where the load effect is imposed), units in the header."""
+    with open(path, "w") as f:
+        if effect == "load":
+            f.write("time [s],position [rad],torque [N*m],normal_load [N]\n")
+            for k in range(len(t)):
+                f.write(f"{t[k]:.4f},{pos[k]:.9e},{tq[k]:.6f},{N[k]:.2f}\n")
+        else:
+            f.write("time [s],position [rad],torque [N*m]\n")
+            for k in range(len(t)):
+                f.write(f"{t[k]:.4f},{pos[k]:.9e},{tq[k]:.6f}\n")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--effect", choices=["none", "ripple", "drift", "load", "softening"],
@@ -273,15 +286,7 @@ def main():
     ap.add_argument("--truth", help="also write true position/friction to this npz")
     a = ap.parse_args()
     t, pos, tq, N, F, th, info = simulate(a.effect, a.seed)
-    with open(a.out, "w") as f:
-        if a.effect == "load":
-            f.write("time [s],position [rad],torque [N*m],normal_load [N]\n")
-            for k in range(len(t)):
-                f.write(f"{t[k]:.4f},{pos[k]:.9e},{tq[k]:.6f},{N[k]:.2f}\n")
-        else:
-            f.write("time [s],position [rad],torque [N*m]\n")
-            for k in range(len(t)):
-                f.write(f"{t[k]:.4f},{pos[k]:.9e},{tq[k]:.6f}\n")
+    write_csv(a.out, a.effect, t, pos, tq, N)
     if a.truth:
         np.savez(a.truth, t=t, theta=th, F=F, N=N, tq=tq)
     print(f"{a.out}: {len(t)} rows, effect={a.effect}, seed={a.seed}")

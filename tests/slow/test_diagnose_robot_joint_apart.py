@@ -19,9 +19,7 @@ from synth import robot_joint_apart as R
 def _run(tmp_path, effect, seed):
     csv = tmp_path / f"{effect}.csv"
     t, pos, tq, N, *_ = R.simulate(effect, seed)
-    cols = [t, pos, tq] + ([N] if effect == "load" else [])
-    header = "time [s],position [rad],torque [N*m]" + (",normal_load [N]" if effect == "load" else "")
-    np.savetxt(csv, np.column_stack(cols), delimiter=",", header=header, comments="", fmt="%.9g")
+    R.write_csv(csv, effect, t, pos, tq, N)
     base, out = tmp_path / f"{effect}.yaml", tmp_path / f"{effect}.json"
     assert main(["fit", str(csv), "--out", str(base)]) == 0
     assert main(["diagnose", str(csv), "--params", str(base), "--json", str(out)]) == 0
