@@ -209,7 +209,9 @@ def _time_one(kind: str, seed: int, effects, samples: int, progress, **gen) -> d
     t0 = time.perf_counter()
     d = diagnose(rec, params)
     elapsed = time.perf_counter() - t0
+    # where the time went: the simulations of the record, and the work around them (``DiagnosisWork``)
     return {"samples": len(df), "seconds": elapsed, "vs_one_simulation": elapsed / base, "named": d.effects,
+            "simulations": d.work.simulations, "simulation_share": d.work.simulation_seconds / d.work.seconds,
             "truth": sorted(case.expected), "space": d.space,
             "rms_reduction": 1 - d.steps[-1]["rms_free"] / d.steps[1]["rms_free"]}
 

@@ -67,6 +67,7 @@ import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from time import perf_counter
 from typing import NamedTuple
 
 import numpy as np
@@ -1309,6 +1310,7 @@ class Engine:
         self._sims = []  # [(base, key, friction)], the most recently used last (``SIM_CACHE``)
         self._steadies = []  # [SteadyAlong], the same way
         self.sims = 0
+        self.sim_seconds = 0.0  # spent in the simulations themselves (``DiagnosisWork``)
         self.free_inertia = False  # the model written: eq. (8)'s inertia left free beside it (``model_nuisance``)
         # the friction effects' factor a presliding range following them follows, where it is held
         # (``following_held``); None: the current one, every simulation keyed by the friction effects
@@ -1415,8 +1417,10 @@ class Engine:
                 self._sims.append(self._sims.pop(i))
                 return sim
         sa = self._steady()
+        t0 = perf_counter()
         # along the shared S(v)'s own copies of the path, checked once when they were made
         sim = friction_along(self.p, sa, stiffness_scale=ss)
+        self.sim_seconds += perf_counter() - t0
         self._sims = self._sims[-(SIM_CACHE - 1):] + [(self.p, key, sim)]
         self.sims += 1
         return sim
@@ -1443,8 +1447,11 @@ class Engine:
             self._x0 = c.path[self._starts].copy()
             self._v0 = v0
         self.sims += 1
-        return simulate_windows(self.p, c.time, c.force, self._starts, self._x0, self._v0, friction_scale=fs,
-                                stiffness_scale=ss)
+        t0 = perf_counter()
+        out = simulate_windows(self.p, c.time, c.force, self._starts, self._x0, self._v0, friction_scale=fs,
+                               stiffness_scale=ss)
+        self.sim_seconds += perf_counter() - t0
+        return out
 
 
 @dataclass
@@ -2156,6 +2163,22 @@ def effect_sds(terms: list, full: list, folds: list, named) -> dict:
 
 
 # ---------------------------------------------------------------- the result
+@dataclass(frozen=True)
+class DiagnosisWork:
+    """Where a diagnosis's time went: its wall time, and the simulations of the record it made
+    (each a whole pass of the model along the compared path, or of the plant over every window)
+    with the time spent in them; the rest is the work around them (the effects' factors, the
+    filter, the residuals, the least-squares steps). ``leuven-friction bench`` reports it."""
+
+    seconds: float
+    simulations: int
+    simulation_seconds: float
+
+    def as_dict(self) -> dict:
+        return {"seconds": self.seconds, "simulations": self.simulations,
+                "simulation_seconds": self.simulation_seconds}
+
+
 @dataclass
 class Diagnosis:
     effects: list  # names of the effects named, in order
@@ -2182,6 +2205,7 @@ class Diagnosis:
     explaining: dict = field(repr=False, default_factory=dict)
     # effects that passed held out but that the model written does not use: [{name, own_gain}]
     unused: list = field(default_factory=list)
+    work: DiagnosisWork | None = None
 
     # the first named effect, for callers that show one
     @property
@@ -2261,6 +2285,7 @@ class Diagnosis:
             "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
             "elsewhere": [c["name"] for c in self.elsewhere], "written_effects": self.written_effects(),
             "candidates": self.candidates, "notes": list(self.notes),
+            "work": None if self.work is None else self.work.as_dict(),
             "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
                          "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr,
                          "must_settle": self.settings.must_settle, "reading": dict(self.settings.reading)},
@@ -2665,6 +2690,7 @@ def bake(params: FrictionParams, g: float, k0: float) -> FrictionParams:
 def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings: Settings | None = None) -> Diagnosis:
     """Run the workflow on one recording with the current model ``params``."""
     s = settings or Settings()
+    started = perf_counter()
     say = progress or (lambda frac, msg: None)
     say(0.01, "choosing where to compare")
     cmp_ = comparison_of(rec, params, s.space, dict(s.reading))
@@ -3145,7 +3171,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      space=cmp_.space, noise=cmp_.noise, notes=cmp_.notes, params_before=params,
                      params_after=new_params, settings=s, time=cmp_.time, measured=meas, model_before=pred_given_c,
                      model_after=after, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining,
-                     unused=unused)
+                     unused=unused, work=DiagnosisWork(perf_counter() - started, engine.sims, engine.sim_seconds))
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written

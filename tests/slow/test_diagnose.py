@@ -36,6 +36,36 @@ def test_clean_recording_names_nothing_and_keeps_the_model(tmp_path):
     assert d.rms_after == d.steps[0]["rms"] and np.array_equal(d.model_after, d.model_before)
 
 
+def test_the_work_reported_counts_every_simulation_and_its_time(monkeypatch):
+    # every simulation of the record goes through model.friction_along (friction compared):
+    # a spy on it counts them and times them on its own, and the diagnosis's account of its
+    # work must agree, its simulations a part of its wall time and its JSON carrying the same
+    import time
+
+    import leuven_friction.identify.diagnose as D
+
+    calls, spent = [], [0.0]
+    real = D.friction_along
+
+    def spy(*args, **kw):
+        t0 = time.perf_counter()
+        out = real(*args, **kw)
+        spent[0] += time.perf_counter() - t0
+        calls.append(1)
+        return out
+
+    monkeypatch.setattr(D, "friction_along", spy)
+    df, truth, case = make_case("tribometer", 4247, ("time_drift",))
+    t0 = time.perf_counter()
+    d = diagnose(to_recording(df, "drift.csv"), oracle_params(truth))
+    wall = time.perf_counter() - t0
+    w = d.work
+    assert w.simulations == len(calls) > 0
+    # the engine's clock brackets the spy's (each call to the spy lies inside the engine's interval)
+    assert 0.0 < spent[0] <= w.simulation_seconds < w.seconds <= wall
+    assert json.loads(json.dumps(d.summary()))["work"] == w.as_dict()
+
+
 def test_a_base_off_by_half_is_returned_as_given_and_said_to_be_off():
     # S(v) levels 1.5 × the machine's: the level the alternative refits takes that up, no effect
     # is named, the file written is the one given, and the report says the base is what is off
