@@ -2206,6 +2206,10 @@ class Diagnosis:
     # effects that passed held out but that the model written does not use: [{name, own_gain}]
     unused: list = field(default_factory=list)
     work: DiagnosisWork | None = None
+    # the motion reading's thresholds as used, in SI as `diagnose --threshold` takes them: a
+    # diagnosis of a file this one wrote counts reversals from a quarter of that file's presliding
+    # range (``reversal_threshold``), so it may compare another span unless given the same
+    reading: dict = field(default_factory=dict)
 
     # the first named effect, for callers that show one
     @property
@@ -2286,6 +2290,7 @@ class Diagnosis:
             "elsewhere": [c["name"] for c in self.elsewhere], "written_effects": self.written_effects(),
             "candidates": self.candidates, "notes": list(self.notes),
             "work": None if self.work is None else self.work.as_dict(),
+            "reading": dict(self.reading),
             "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
                          "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr,
                          "must_settle": self.settings.must_settle, "reading": dict(self.settings.reading)},
@@ -3171,7 +3176,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      space=cmp_.space, noise=cmp_.noise, notes=cmp_.notes, params_before=params,
                      params_after=new_params, settings=s, time=cmp_.time, measured=meas, model_before=pred_given_c,
                      model_after=after, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining,
-                     unused=unused, work=DiagnosisWork(perf_counter() - started, engine.sims, engine.sim_seconds))
+                     unused=unused, work=DiagnosisWork(perf_counter() - started, engine.sims, engine.sim_seconds),
+                     reading={"window": int(cmp_.window), "v_rest": float(cmp_.v_rest),
+                              "min_excursion": float(cmp_.min_excursion)})
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written

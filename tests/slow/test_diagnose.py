@@ -139,7 +139,10 @@ def test_the_file_a_diagnosis_writes_starts_the_next_one_from_its_last_gap(tmp_p
     # carries the softening; diagnosed again from that file, the model as given already shows
     # the first one's last gap (the same things left free beside it: the memory's constant
     # and eq. (8)'s inertia, which neither writes), nothing more is named, and the file's own
-    # softening is not flagged as unsettled
+    # softening is not flagged as unsettled. Both count reversals from the same back-travel: by
+    # default each derives it from its file's presliding range, and the written file's, 2.5 times
+    # the first's, moves the first significant reversal past the first gross sliding, so the
+    # second would compare from 16.8 s, not 3.9 s (a gap 9 % smaller, of another span)
     from leuven_friction.identify.paramfile import save_params
     from synth.hidden import SUITE_RATE
 
@@ -151,9 +154,12 @@ def test_the_file_a_diagnosis_writes_starts_the_next_one_from_its_last_gap(tmp_p
     assert main(["diagnose", str(data), "--params", str(base), "--out", str(written), "--json", str(first)]) == 0
     r1 = json.loads(first.read_text())
     assert r1["effects"] == ["cyclic_softening"], r1["effects"]
-    assert main(["diagnose", str(data), "--params", str(written), "--json", str(second)]) == 0
+    back_travel = r1["reading"]["min_excursion"]
+    assert main(["diagnose", str(data), "--params", str(written), "--json", str(second),
+                 "--threshold", f"min_excursion={back_travel!r}"]) == 0
     r2 = json.loads(second.read_text())
     assert r2["effects"] == [] and not r2.get("unsettled"), r2
+    assert r2["reading"]["min_excursion"] == back_travel
     assert r2["steps"][0]["rms"] == pytest.approx(r1["steps"][-1]["rms"], rel=0.02)
     # … where the file the first one started from was 4 times as far off
     assert r1["steps"][0]["rms"] > 3 * r2["steps"][0]["rms"]
