@@ -66,7 +66,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from time import perf_counter
 from typing import NamedTuple
 
@@ -1417,13 +1417,18 @@ class Engine:
                 self._sims.append(self._sims.pop(i))
                 return sim
         sa = self._steady()
-        t0 = perf_counter()
         # along the shared S(v)'s own copies of the path, checked once when they were made
-        sim = friction_along(self.p, sa, stiffness_scale=ss)
-        self.sim_seconds += perf_counter() - t0
+        sim = self._counted(friction_along, self.p, sa, stiffness_scale=ss)
         self._sims = self._sims[-(SIM_CACHE - 1):] + [(self.p, key, sim)]
-        self.sims += 1
         return sim
+
+    def _counted(self, simulate, *args, **kw) -> np.ndarray:
+        """One simulation of the record, counted and timed (``DiagnosisWork``)."""
+        t0 = perf_counter()
+        out = simulate(*args, **kw)
+        self.sim_seconds += perf_counter() - t0
+        self.sims += 1
+        return out
 
     def _steady(self) -> SteadyAlong:
         """v and S(v) of the base along the path, from the last STEADY_CACHE S(v) (a refit of
@@ -1446,12 +1451,8 @@ class Engine:
             v0[np.abs(v0) < c.v_rest] = 0.0
             self._x0 = c.path[self._starts].copy()
             self._v0 = v0
-        self.sims += 1
-        t0 = perf_counter()
-        out = simulate_windows(self.p, c.time, c.force, self._starts, self._x0, self._v0, friction_scale=fs,
-                               stiffness_scale=ss)
-        self.sim_seconds += perf_counter() - t0
-        return out
+        return self._counted(simulate_windows, self.p, c.time, c.force, self._starts, self._x0, self._v0,
+                             friction_scale=fs, stiffness_scale=ss)
 
 
 @dataclass
@@ -2174,10 +2175,6 @@ class DiagnosisWork:
     simulations: int
     simulation_seconds: float
 
-    def as_dict(self) -> dict:
-        return {"seconds": self.seconds, "simulations": self.simulations,
-                "simulation_seconds": self.simulation_seconds}
-
 
 @dataclass
 class Diagnosis:
@@ -2289,7 +2286,7 @@ class Diagnosis:
             "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
             "elsewhere": [c["name"] for c in self.elsewhere], "written_effects": self.written_effects(),
             "candidates": self.candidates, "notes": list(self.notes),
-            "work": None if self.work is None else self.work.as_dict(),
+            "work": None if self.work is None else asdict(self.work),
             "reading": dict(self.reading),
             "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
                          "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr,

@@ -40,6 +40,7 @@ def test_the_work_reported_counts_every_simulation_and_its_time(monkeypatch):
     # every simulation of the record goes through model.friction_along (friction compared):
     # a spy on it counts them and times them on its own, and the diagnosis's account of its
     # work must agree, its simulations a part of its wall time and its JSON carrying the same
+    import dataclasses
     import time
 
     import leuven_friction.identify.diagnose as D
@@ -63,7 +64,7 @@ def test_the_work_reported_counts_every_simulation_and_its_time(monkeypatch):
     assert w.simulations == len(calls) > 0
     # the engine's clock brackets the spy's (each call to the spy lies inside the engine's interval)
     assert 0.0 < spent[0] <= w.simulation_seconds < w.seconds <= wall
-    assert json.loads(json.dumps(d.summary()))["work"] == w.as_dict()
+    assert json.loads(json.dumps(d.summary()))["work"] == dataclasses.asdict(w)
 
 
 def test_a_base_off_by_half_is_returned_as_given_and_said_to_be_off():
