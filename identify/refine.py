@@ -300,6 +300,12 @@ def sigma1_at_damping_ratio(curve: TransitionCurve, inertia: float, zeta: float 
     return float(2.0 * zeta * np.sqrt(curve.initial_stiffness() * inertia))
 
 
+def _lowered_enough(fit, r0: np.ndarray, after: dict, before: dict) -> bool:
+    """Whether the refinement is worth keeping: its cost 10 % below the start's, and every
+    experiment's RMS residual 10 % below its own."""
+    return bool(fit.cost < 0.9 * 0.5 * float(r0 @ r0)) and all(after[k] < 0.9 * before[k] for k in before)
+
+
 def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     tc = res.params.transition_curve
     z1 = float(tc.z[1]) if tc.kind == "piecewise_linear" and len(tc.z) > 1 else np.inf
@@ -373,23 +379,34 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     # plain least squares.
     loss = "soft_l1" if any(e.kind == "motion" for e in exps) else "linear"
     held_tc = np.zeros(len(theta0), dtype=bool)
+
+    def solve(x, bounds):
+        return least_squares(resid, x, bounds=bounds, x_scale="jac", method="trf", max_nfev=max_nfev, loss=loss,
+                             f_scale=3.0, diff_step=1e-5)
+
     try:
-        fit = least_squares(resid, theta0, bounds=(lo, hi), x_scale="jac", method="trf", max_nfev=max_nfev, loss=loss, f_scale=3.0,
-                            diff_step=1e-5)
+        bounds = (lo, hi)
+        fit = solve(theta0, bounds)
         # a segment of F_d the refined simulation does not reach past its middle keeps its
         # maximum-likelihood value: touched only at its start, it would absorb whatever the
         # end of a simulated stretch leaves unexplained. Refit once with those held.
         held_tc = _unreached_segments(vec, fit.x, exps, res.params.transition_curve.z)
         if held_tc.any():
             pad = 1e-9 * np.maximum(np.abs(theta0), 1.0)
-            lo2, hi2 = np.where(held_tc, theta0 - pad, lo), np.where(held_tc, theta0 + pad, hi)
-            fit = least_squares(resid, np.clip(fit.x * ~held_tc + theta0 * held_tc, lo2, hi2), bounds=(lo2, hi2),
-                                x_scale="jac", method="trf", max_nfev=max_nfev, loss=loss, f_scale=3.0, diff_step=1e-5)
+            bounds = (np.where(held_tc, theta0 - pad, lo), np.where(held_tc, theta0 + pad, hi))
+            fit = solve(np.clip(fit.x * ~held_tc + theta0 * held_tc, *bounds), bounds)
+        # the evaluation budget is sized for the usual descent; one that used it up short of the
+        # 10 % below is continued once from where it stopped, so that whether the refinement is
+        # kept does not hinge on where the budget cut the descent (another CPU's rounding moved
+        # a linear stage's stop after 20 evaluations from below the bar to 9.2 % under the
+        # start's RMS; continued, it ends 18 % under it)
+        if fit.status == 0 and not _lowered_enough(fit, r0, rms(fit.x), before):
+            fit = solve(fit.x, bounds)
     except (ValueError, np.linalg.LinAlgError) as e:
         res.refinement = {"done": False, "reason": f"the simulation-based least squares failed ({e})"}
         return res
     after_try = rms(fit.x)
-    if not (fit.cost < 0.9 * 0.5 * float(r0 @ r0)) or not all(after_try[k] < 0.9 * before[k] for k in before):
+    if not _lowered_enough(fit, r0, after_try, before):
         res.refinement = {"done": False, "reason": "simulating the full model lowered the cost by less than 10 %: kept "
                           "the Markov and maximum-likelihood estimates (residual RMS "
                           + "; ".join(f"{k}: {v:.3g}" for k, v in before.items()) + ")", "rms_before": before}
