@@ -27,12 +27,17 @@ def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True, shuffle
     levels = shuffled_levels(kind, seed) if shuffled else None
     df, truth, case = make_case(kind, seed, effects, rate=SUITE_RATE[kind], levels=levels)
     rec = to_recording(df, name=f"{case.label}.csv")
+    refinement = None
     if base == "oracle":
         params = oracle_params(truth)
     else:
         from leuven_friction.identify.fit import fit_recordings
 
-        params = fit_recordings([rec]).params
+        fitted = fit_recordings([rec])
+        params = fitted.params
+        # whether the fit's output-error refinement was kept, and whether its least squares was
+        # continued past its evaluation budget to get there
+        refinement = {k: (fitted.refinement or {}).get(k) for k in ("done", "continued")}
     t0 = time.perf_counter()
     d = diagnose(rec, params, settings=Settings(must_settle=must_settle))
     el = time.perf_counter() - t0
@@ -42,7 +47,7 @@ def _diagnose_case(kind, seed, effects, base="oracle", must_settle=True, shuffle
             "confounded": [c["effects"] for c in d.confounded], "unsettled": [c["name"] for c in d.unsettled],
             "unused": [c["name"] for c in d.unused], "elsewhere": [c["name"] for c in d.elsewhere],
             "rms_steps": gap, "rms_free_steps": [s.get("rms_free") for s in d.steps], "noise": d.noise,
-            "space": d.space, "samples": len(df), "seconds": el, "notes": list(d.notes),
+            "space": d.space, "samples": len(df), "seconds": el, "notes": list(d.notes), "refinement": refinement,
             "heldout_gains": [s.get("heldout_gain") for s in d.steps[2:]],
             # each named effect's written parameters and their σ, and the generator's own values
             "effect_fits": [{"name": st["name"], "params": dict(st["params"] or {}), "sd": dict(st.get("sd") or {}),

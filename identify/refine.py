@@ -379,6 +379,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     # plain least squares.
     loss = "soft_l1" if any(e.kind == "motion" for e in exps) else "linear"
     held_tc = np.zeros(len(theta0), dtype=bool)
+    continued = False  # the least squares continued past its evaluation budget (below)
 
     def solve(x, bounds):
         return least_squares(resid, x, bounds=bounds, x_scale="jac", method="trf", max_nfev=max_nfev, loss=loss,
@@ -400,8 +401,11 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
         # kept does not hinge on where the budget cut the descent (another CPU's rounding moved
         # a linear stage's stop after 20 evaluations from below the bar to 9.2 % under the
         # start's RMS; continued, it ends 18 % under it)
-        if fit.status == 0 and not _lowered_enough(fit, r0, rms(fit.x), before):
+        continued = fit.status == 0 and not _lowered_enough(fit, r0, rms(fit.x), before)
+        if continued:
+            spent = fit.nfev
             fit = solve(fit.x, bounds)
+            fit.nfev += spent
     except (ValueError, np.linalg.LinAlgError) as e:
         res.refinement = {"done": False, "reason": f"the simulation-based least squares failed ({e})"}
         return res
@@ -409,7 +413,8 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     if not _lowered_enough(fit, r0, after_try, before):
         res.refinement = {"done": False, "reason": "simulating the full model lowered the cost by less than 10 %: kept "
                           "the Markov and maximum-likelihood estimates (residual RMS "
-                          + "; ".join(f"{k}: {v:.3g}" for k, v in before.items()) + ")", "rms_before": before}
+                          + "; ".join(f"{k}: {v:.3g}" for k, v in before.items()) + ")", "rms_before": before,
+                          "continued": continued}
         return res
     # δ of eq. (7) has a finite range here (0.05–5): an S(v) whose shape the simulation pushed
     # to an end of it has no interior optimum — a refinement that trades the Markov levels for a
@@ -496,6 +501,8 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                       "what": ("S(v), transition curve" if motion and vec.has_tc else "S(v) (transition curve from the ML step)"
                                if motion else "transition curve only (S(v) from the Markov step)")
                               + "; weighted residuals (1 = the noise floor); per experiment in data units: "
-                              + "; ".join(f"{k}: {before[k]:.3g} -> {after[k]:.3g}" for k in before),
-                      "per_experiment_before": before, "per_experiment_after": after, "evaluations": int(fit.nfev)}
+                              + "; ".join(f"{k}: {before[k]:.3g} -> {after[k]:.3g}" for k in before)
+                              + ("; continued once past the evaluation budget" if continued else ""),
+                      "per_experiment_before": before, "per_experiment_after": after, "evaluations": int(fit.nfev),
+                      "continued": continued}
     return res

@@ -510,3 +510,21 @@ def test_a_fit_started_from_a_parameter_file_writes_its_own_uncertainties(tmp_pa
     assert not set(again.held) & set(again.params.uncertainty)
     for k in ("stribeck.positive.Fc", "stribeck.negative.sigma2"):
         assert 0.5 < again.params.uncertainty[k] / alone.params.uncertainty[k] < 2.0, k
+
+
+def test_a_refinement_cut_short_by_its_budget_is_continued_once_and_says_so(monkeypatch):
+    """Two evaluations do not carry the stage's refinement 10 % down: the least squares goes on
+    once from where it stopped (two more), and the report says it did; whether it is then kept
+    is the 10 % rule's, on the cost after both."""
+    import functools
+
+    from leuven_friction.identify import refine
+
+    monkeypatch.setattr(refine, "refine_fit", functools.partial(refine.refine_fit, max_nfev=2))
+    df, _ = make_recording("linear_stage", 2)
+    rf = fit_recordings([_rec(df, "linear_stage.csv", ",")]).refinement
+    assert rf["continued"] is True, rf
+    if rf["done"]:
+        assert 2 < rf["evaluations"] <= 4 and "continued once" in rf["what"]
+    else:
+        assert "less than 10 %" in rf["reason"]
