@@ -1530,8 +1530,8 @@ class StiffnessChord:
     simulated the record once per such entry (on a rotary table made apart, 1,700 of a
     diagnosis's 2,700 simulations). Not used for the model written's refit: there a plain chord
     of n, σ1 and S(v) stalls once the refit moves, and one taken afresh where it missed a step
-    wrote a file that, diagnosed again, showed a gap 8 % under the one reported — not
-    understood (docs/diagnosis-history.md, Speed)."""
+    saves a seventh of the time at a written gap over 5 % worse on some recordings
+    (docs/diagnosis-history.md, Speed)."""
 
     anchor: np.ndarray
     columns: dict  # index in the vector → d(simulated friction)/du_j at the anchor, per sample
