@@ -86,6 +86,7 @@ from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_fr
 from .data import DataError, Recording
 from .errors import IdentificationError
 from .segment import checked_threshold, gross_sliding_mask, local_slope, speed_levels, steady_velocity_mask
+from .threads import one_blas_thread
 
 
 INFORMATIVE = 0.01  # a held-out fold counts if the candidate moves its SSE by this fraction
@@ -2689,6 +2690,7 @@ def bake(params: FrictionParams, g: float, k0: float) -> FrictionParams:
     return params.replace(**kw)
 
 
+@one_blas_thread
 def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings: Settings | None = None) -> Diagnosis:
     """Run the workflow on one recording with the current model ``params``."""
     s = settings or Settings()

@@ -28,6 +28,7 @@ from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sid
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, Prepared, constant_velocity_levels, crossing_range, crossings,
                       force_branches, motion_branches, noise_sd, prepare, sliding_levels)
+from .threads import one_blas_thread
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
 RESOLVED = 2.0  # position-noise σ (or encoder steps) a displacement must exceed to be told from none
@@ -322,6 +323,7 @@ def _units_of(recordings) -> dict:
     return units or {"position": "rad", "force": "N*m", "time": "s"}
 
 
+@one_blas_thread
 def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None = None, knots=None,
                    n: float = 7.0, fit_n: bool = False, progress=None, thresholds: dict | None = None,
                    friction_sign: str = "auto", refine: bool = True) -> FitResult:
