@@ -2,9 +2,8 @@
 
 OpenBLAS shares a reduction (a dot product, a matrix-vector product) out among its threads, so
 the same least squares rounds otherwise on a machine with another number of cores, and an
-optimiser's path — and a decision taken at a threshold — can follow it: a robot joint of the
-hidden-effect suite got another fitted parameter set, and diagnosis gaps moved in the ninth
-digit, between one thread and two. The matrices here are small (thousands of rows, tens of
+optimiser's path — and a decision taken at a threshold — can follow it: the gaps of a robot
+joint of the hidden-effect suite moved in the ninth digit between one thread and two. The matrices here are small (thousands of rows, tens of
 columns), and more threads buy nothing there, so ``fit_recordings`` and ``diagnose`` run on one,
 whatever the machine has. (The compiled simulation kernels use no BLAS.)
 """
