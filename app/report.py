@@ -6,6 +6,7 @@ import html
 
 import plotly.io as pio
 
+from ..identify.diagnose import confounding_reason
 from ..model.effects import format_values
 from . import plots
 
@@ -37,9 +38,8 @@ def diagnosis_html(d, source: str) -> str:
     conf = ""
     if d.confounded:
         conf = "<h2>Confounded candidates</h2>" + _table(
-            [[" / ".join(c["effects"]), f"{c['correlation']:.2f}", " vs ".join(f"{100 * g:.1f} %" for g in c["gains"]),
-              c["experiment"]] for c in d.confounded],
-            ["candidates", "correlation of corrections", "held-out gains", "experiment that separates them"])
+            [[" / ".join(c["effects"]), confounding_reason(c), c["experiment"]] for c in d.confounded],
+            ["candidates", "why they are confounded", "experiment that separates them"])
     seen = d.seen_not_named()
     if seen:
         conf += "<h2>Seen, not named</h2>" + _table(
