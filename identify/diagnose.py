@@ -50,7 +50,9 @@ out-of-sample evidence, add it, refit, look again.
 5. **Confounding.** Two passing candidates whose corrections are alike (correlation above
    ``confound_corr``) and neither of which predicts clearly better out of sample are reported
    as confounded — each one's evidence and the experiment that would separate them — and
-   neither is named.
+   neither is named. So are two whose corrections are unlike (a drift's in the sliding, a
+   softening's in the transitions) where the one not named, not clearly beaten, gains nothing
+   held out beside the winner in the next round: the naming is then taken back.
 6. **Several effects.** Name, add, refit all together, look again, until nothing passes; the
    gap after every step is kept. The model written (``written_fits``) is, at every step, the
    model as given with n, σ1, the S(v) levels, the curve's segments, g, κ0 and that step's
