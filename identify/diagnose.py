@@ -3127,7 +3127,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                              "fit it to this recording (`leuven-friction fit`) or give --params closer to it")
                           + ("; the base refitted alone as the model written is what is written (--refit-base)"
                              if rebased else f"; `diagnose --refit-base --out` writes the base refitted alone as the "
-                             f"model written (it leaves {_rms((meas - final.pred)[allm]):.4g})"))
+                             f"model written (it leaves {_rms((meas - final.pred)[allm]):.4g})")
+                          # κ0 scales z in F_d(κ0·z): far from 1, the file's curve is not the record's
+                          + (f"; the alternative's presliding stiffness is ×{null.k0:.3g} the file's (F_d(κ0·z)): the "
+                             f"whole record's transitions are far from the file's transition curve"
+                             if not 0.5 <= null.k0 <= 2.0 else ""))
     for k, m in regimes_m.items():
         m = m & allm
         if m.any():
