@@ -401,15 +401,16 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
         # kept does not hinge on where the budget cut the descent (another CPU's rounding moved
         # a linear stage's stop after 20 evaluations from below the bar to 9.2 % under the
         # start's RMS; continued, it ends 18 % under it)
-        continued = fit.status == 0 and not _lowered_enough(fit, r0, rms(fit.x), before)
+        after_try = rms(fit.x)
+        continued = fit.status == 0 and not _lowered_enough(fit, r0, after_try, before)
         if continued:
             spent = fit.nfev
             fit = solve(fit.x, bounds)
             fit.nfev += spent
+            after_try = rms(fit.x)
     except (ValueError, np.linalg.LinAlgError) as e:
         res.refinement = {"done": False, "reason": f"the simulation-based least squares failed ({e})"}
         return res
-    after_try = rms(fit.x)
     if not _lowered_enough(fit, r0, after_try, before):
         res.refinement = {"done": False, "reason": "simulating the full model lowered the cost by less than 10 %: kept "
                           "the Markov and maximum-likelihood estimates (residual RMS "
