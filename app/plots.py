@@ -442,12 +442,26 @@ def _diag_unit(d) -> tuple[str, str]:
     return ("friction", u.get("force", "")) if d.space == "friction" else ("position", u.get("position", ""))
 
 
+def wrapped(label: str, width: int = 24) -> str:
+    """A long axis label broken into lines of about ``width`` characters at its spaces (Plotly's
+    <br>): a step's label names the alternative's level and stiffness, and on one slanted line it
+    ran off the plot."""
+    lines, line = [], ""
+    for word in label.split(" "):
+        if line and len(line) + 1 + len(word) > width:
+            lines.append(line)
+            line = word
+        else:
+            line = f"{line} {word}" if line else word
+    return "<br>".join(lines + [line])
+
+
 def diagnosis_steps_figure(d) -> go.Figure:
     """The RMS gap after every step (model as given, the refitted alternative, each effect
     added), of the model written and beside the free steady curve the decision compares
     with, and the recording's noise floor."""
     what, unit = _diag_unit(d)
-    labels = [s["label"] for s in d.steps]
+    labels = [wrapped(s["label"]) for s in d.steps]
     fig = _Fig()
     fig.add_trace(dict(type="bar", x=labels, y=[s["rms"] for s in d.steps], name="model written",
                        marker=dict(color=[COLORS[1]] * 2 + [COLORS[0]] * (len(labels) - 2))))
@@ -455,7 +469,7 @@ def diagnosis_steps_figure(d) -> go.Figure:
                        marker=dict(color="#9ecae1")))
     fig.add_trace(_scatter(labels, [d.noise] * len(labels), mode="lines", name="noise floor",
                            line=dict(color="#444444", dash="dash")))
-    return _layout(fig, f"Gap in {what}, step by step", "", f"RMS ({unit})", xaxis=dict(tickangle=-20))
+    return _layout(fig, f"Gap in {what}, step by step", "", f"RMS ({unit})", xaxis=dict(tickangle=0))
 
 
 def diagnosis_signal_figure(d) -> go.Figure:

@@ -48,7 +48,7 @@ def diagnosis_html(d, source: str) -> str:
             ["candidate", "held-out gain", "folds", "why it is not named"])
     return f"""<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>{title}</title>
-<style>body{{font-family:Arial,sans-serif;max-width:1100px;margin:2em auto;}} pre{{background:#f6f6f6;padding:1em;}}
+<style>body{{font-family:Arial,sans-serif;max-width:1100px;margin:2em auto;}} pre{{background:#f6f6f6;padding:1em;white-space:pre-wrap;overflow-wrap:anywhere;}}
 table{{border-collapse:collapse;margin:1em 0;}} td,th{{border:1px solid #ccc;padding:4px 8px;text-align:left;}}</style>
 </head><body>
 <h1>{title}</h1>

@@ -372,3 +372,34 @@ def test_a_recognised_column_set_to_none_stays_none(chromium, tmp_path):
         wait_text(page, "ignored columns: velocity [rad/s]", 60)
         assert dropdown.input_value() == "(none)"
         page.close()
+
+
+def test_diagnosis_report_reads_in_the_window(chromium, tribometer_file, tmp_path):
+    """`diagnose --html` opened in the browser at 1280 px: no horizontal scroll (its text report
+    wraps; one line of it had made the page 5,200 px wide), every figure drawn with data, and the
+    step-by-step plot's labels inside the plot's own box."""
+    from leuven_friction.app.cli import main
+
+    path, _ = tribometer_file
+    report = tmp_path / "report.html"
+    assert main(["diagnose", str(path), "--columns", "position=Stage [mm]", "--html", str(report)]) == 0
+    page = chromium.new_page(viewport={"width": 1280, "height": 900})
+    page.goto(report.as_uri())
+    page.wait_for_function("() => [...document.querySelectorAll('.js-plotly-plot')].length >= 4 && "
+                           "[...document.querySelectorAll('.js-plotly-plot')].every(e => e._fullData)", timeout=30_000)
+    r = page.evaluate("""() => {
+      const plots = [...document.querySelectorAll('.js-plotly-plot')];
+      const steps = plots.find(e => (e.querySelector('.gtitle') || {}).textContent.includes('step by step'));
+      const box = steps.getBoundingClientRect();
+      const ticks = [...steps.querySelectorAll('.xtick text')].map(t => t.getBoundingClientRect());
+      return {scrollWidth: document.documentElement.scrollWidth, innerWidth: innerWidth,
+              points: plots.map(e => e._fullData.reduce((n, t) => n + (t.x || []).length, 0)),
+              box: {left: box.left, right: box.right, bottom: box.bottom},
+              ticks: ticks.map(t => ({left: t.left, right: t.right, bottom: t.bottom}))};
+    }""")
+    assert r["scrollWidth"] <= r["innerWidth"], r
+    assert all(n > 0 for n in r["points"]), r["points"]
+    assert len(r["ticks"]) >= 2 and all(r["box"]["left"] <= t["left"] and t["right"] <= r["box"]["right"]
+                                        and t["bottom"] <= r["box"]["bottom"] for t in r["ticks"]), r
+    shot(page, "diagnosis_report_1280")
+    page.close()
