@@ -269,6 +269,16 @@ def parse_column_mapping(spec: str | None) -> dict:
     return out
 
 
+def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
+    """A column's values as floats, NaN where a cell is no number. In a table with the decimal
+    comma, a column that holds a word somewhere is read as text with its numbers' commas in
+    place: they are read as decimal marks here, so the message names the word, not the first
+    number (which "0,5" would otherwise be)."""
+    if decimal != "." and not pd.api.types.is_numeric_dtype(raw.dtype):
+        raw = raw.map(lambda c: c.replace(decimal, ".") if isinstance(c, str) else c)
+    return pd.to_numeric(raw, errors="coerce").to_numpy(dtype=np.float64)
+
+
 def _read_table(path: Path, text: str) -> pd.DataFrame:
     """Guess the separator from the header (the first line that is not a ``#`` comment):
     tab, semicolon (European CSV: then a comma is the decimal mark), comma, or whitespace."""
@@ -276,8 +286,10 @@ def _read_table(path: Path, text: str) -> pd.DataFrame:
 
     sep, decimal = sniff(text.splitlines())
     try:
-        return pd.read_csv(io.StringIO(text), sep=sep, engine="c" if sep != r"\s+" else "python", comment="#",
-                           skip_blank_lines=True, decimal=decimal)
+        df = pd.read_csv(io.StringIO(text), sep=sep, engine="c" if sep != r"\s+" else "python", comment="#",
+                         skip_blank_lines=True, decimal=decimal)
+        df.attrs["decimal"] = decimal
+        return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
         raise DataError(f"{path}: not a readable CSV/TSV table ({msg})") from None
@@ -320,6 +332,19 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     else:
         df = _read_table(path, text)
     encoding = df.attrs.get("encoding", encoding)
+
+    def row_of(index: int) -> int:
+        """The row a message names: the file's line (comments and blank lines counted, as an
+        editor or a spreadsheet numbers them), or in a Parquet or .mat table the header's row + 1."""
+        from .io import file_line_of_row, line_of_row, table_format
+
+        line = None
+        if text is not None:
+            line = line_of_row(text.splitlines(), index)
+        elif table_format(path) not in ("parquet", "mat"):
+            line = file_line_of_row(path, index)
+        return line if line is not None else index + 2
+
     in_file = [str(c) for c in df.attrs.get("columns_in_file", df.columns)]
     if not in_file or (df.shape[1] > 0 and len(df) == 0):
         raise DataError(f"{path}: no data rows under the header")
@@ -385,7 +410,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             notes.append(f"{col}: taken as {sig}, not used here: not read")
             continue
         raw = df[col]
-        values = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=np.float64)
+        values = numbers_of(raw, df.attrs.get("decimal", "."))
         bad = np.flatnonzero(~np.isfinite(values))
         if len(bad):
             r = int(bad[0])
@@ -393,7 +418,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             what = ("is empty or NaN" if cell is None or (isinstance(cell, float) and np.isnan(cell)) or not str(cell).strip()
                     else f"{str(cell)!r} is not a finite number")
             raise DataError(
-                f"{path}: column {col!r} row {r + 2}: {what}"
+                f"{path}: column {col!r} row {row_of(r)}: {what}"
                 + (f" ({len(bad)} such rows)" if len(bad) > 1 else "")
             )
         unit = (units or {}).get(sig) or headers[col][1]
@@ -434,7 +459,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         r = int(bad[0]) + 1
         raw = df[rec.columns["time"]]  # the file's own numbers, in the file's unit
         raise DataError(
-            f"{path}: column {rec.columns['time']!r} row {r + 2}: time {raw.iloc[r]} does not increase "
+            f"{path}: column {rec.columns['time']!r} row {row_of(r)}: time {raw.iloc[r]} does not increase "
             f"(previous {raw.iloc[r - 1]}); sort the file or remove repeated rows"
         )
     return rec

@@ -167,6 +167,31 @@ def ragged_line(path: Path, sep: str) -> tuple[int, int, int] | None:
                 return None
 
 
+def line_of_row(lines: Iterable[str], index: int) -> int | None:
+    """The line of a text table (1-based, as an editor or a spreadsheet numbers it) that holds
+    its data row ``index`` (0-based) as the reader takes them: blank lines and ``#`` comment
+    lines are skipped, and the first other line is the header. None past the last row."""
+    header = False
+    row = -1
+    for number, line in enumerate(lines, 1):
+        text = line.strip().lstrip("\ufeff")
+        if not text or text.startswith("#"):
+            continue
+        if not header:
+            header = True
+            continue
+        row += 1
+        if row == index:
+            return number
+    return None
+
+
+def file_line_of_row(path: Path, index: int) -> int | None:
+    """``line_of_row`` of a CSV/TSV file, read line by line (only where a message needs it)."""
+    with open(path, encoding="utf-8", errors="replace", newline=None) as f:
+        return line_of_row(f, index)
+
+
 def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
     import pandas as pd
 
@@ -202,6 +227,7 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
             if bad is not None:
                 raise DataError(f"{path}: line {bad[0]} has {bad[1]} fields, the header {bad[2]}")
         df.attrs["encoding"] = encoding
+        df.attrs["decimal"] = decimal  # a column holding a word is read as text: its numbers keep their commas
         return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__

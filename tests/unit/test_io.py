@@ -353,3 +353,31 @@ def test_a_unit_taken_from_a_name_is_said_as_the_header_spells_it(tmp_path):
     rec = load_recording(path)
     assert "friction_mN: converted from mN to N" in rec.notes and "x_mm: converted from mm to m" in rec.notes
     np.testing.assert_allclose(rec.friction, 3e-3 * np.arange(40.0), rtol=1e-12)
+
+
+@pytest.mark.parametrize("as_upload", [False, True])
+def test_a_bad_cell_is_named_by_the_line_an_editor_shows(tmp_path, as_upload):
+    # a European logger's export: two # lines above the header, semicolons, decimal commas
+    head = "# Messschrieb Schlitten X\n# Datum: 12.03.2024; 1 kHz\nZeit [ms];Position [mm];Kraft [kN]\n"
+    rows = [f"{i},5;{0.01 * i:.3f};0,{300 + i:04d}".replace(".", ",") for i in range(200)]
+
+    def load(name, body):
+        text = head + "\n".join(body) + "\n"
+        if as_upload:
+            return load_recording(text.encode(), name=name)
+        f = tmp_path / name
+        f.write_text(text)
+        return load_recording(f)
+
+    rec = load("ok.csv", rows)
+    assert rec.force[3] == pytest.approx(30.3) and rec.time[1] == pytest.approx(1.5e-3)  # kN, ms
+    # a word in a column of decimal commas: the word and its line (3 lines above the first row),
+    # not the column's first number, which the reader left as text
+    word = rows[:50] + [rows[50].rsplit(";", 1)[0] + ";ERR"] + rows[51:]
+    with pytest.raises(DataError, match=r"column 'Kraft \[kN\]' row 54: 'ERR' is not a finite number$"):
+        load("word.csv", word)
+    # a blank line inside the data is skipped by the reader but counted as a line: the row
+    # after the misplaced one (line 105) is on line 106
+    back = rows[:100] + [""] + [rows[120]] + rows[101:]
+    with pytest.raises(DataError, match=r"row 106: time 101.5 does not increase \(previous 120.5\)"):
+        load("back.csv", back)
