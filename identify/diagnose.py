@@ -862,8 +862,10 @@ def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: fl
         return InertiaReading(None, f"the force regressed on the acceleration gives no positive inertia ({I1:.3g} "
                                     f"and {I2:.3g})", no_inertial_term=True)
     if abs(I1 - I2) > 0.1 * I2:
-        return InertiaReading(None, f"the force regressed on the acceleration over two windows disagrees ({I1:.3g} "
-                                    f"against {I2:.3g}): something else follows the acceleration")
+        n1, n2 = est
+        return InertiaReading(None, f"the force regressed on the acceleration reads {I1:.3g} over {n1}-sample means "
+                                    f"and {I2:.3g} over {n2}-sample means, more than 10 % apart: something else "
+                                    f"follows the acceleration, and neither reading is used")
     # (least squares on the rows themselves: from the blocks' normal equations, whose cut of
     # small singular values is coarser, σ moved by up to 40 % where a block holds most of a
     # speed's samples)
@@ -3036,16 +3038,24 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         rounds.pop()  # the model written is the step before's: so are its effects' σ
         engine.set_base(written[-1][1])
     sds, decided = rounds[-1]
-    if "time_drift" in named and len(holds) >= 4 and abs(order.rho) < SPEED_ORDER_RHO:
+    if "time_drift" in s.candidates and len(holds) >= 4 and abs(order.rho) < SPEED_ORDER_RHO:
         span = float(cmp_.time[allm][-1] - cmp_.time[allm][0]) if allm.any() else 0.0
         if levels_revisited(holds, span) == 0:
             # (where the levels follow time, the note on the speed order above says more)
-            cmp_.notes.append(f"no speed level of the steady sliding is visited again later in the session ({len(holds)} "
-                              f"holds): beside the free steady curve each level holds a drift's value at its one visit, "
-                              f"so the drift was decided on the changes within holds and at the transitions, and a "
-                              f"slow one reads short and small (τ and |b| may be below the contact's: on a rotary table "
-                              f"made apart, τ = 12.9 ± 3.3 s for 44.3). To tell: visit a speed level again late in the "
-                              f"session")
+            said = (f"no speed level of the steady sliding is visited again later in the session ({len(holds)} "
+                    f"holds): beside the free steady curve each level holds a drift's value at its one visit")
+            if "time_drift" in named:
+                cmp_.notes.append(f"{said}, so the drift was decided on the changes within holds and at the "
+                                  f"transitions, and a slow one reads short and small (τ and |b| may be below the "
+                                  f"contact's: on a rotary table made apart, τ = 12.9 ± 3.3 s for 44.3). To tell: "
+                                  f"visit a speed level again late in the session")
+            else:
+                # said whatever was named: a drift the schedule hides is not named (a slide made apart,
+                # its ten speeds shuffled and each run once, with a warm-up drift of 25 %: nothing named;
+                # each run twice: the drift named)
+                cmp_.notes.append(f"{said}, so a slow change in time is taken as the shape of S(v) there, and only "
+                                  f"what it changes within holds and at the transitions is seen. To tell: visit a "
+                                  f"speed level again late in the session")
     (null, *_), (final, final_base, final_reid, reidentified) = written[0], written[-1]
     for st, (wf, *_) in zip(steps[1:], written):
         st["rms"] = _rms((meas - wf.pred)[allm])  # the model alone, beside the memory's constant (and inertia)
@@ -3191,11 +3201,13 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             effects=tuple(_clean_entry(e, cmp_) for e in final.entries), uncertainty=unc, provenance=prov)
     # the reversals as the softening named counts them (its own back-travel), else the comparison's
     th = next((e["params"]["min_excursion"] for e in final.entries if e["name"] == "cyclic_softening"), cmp_.min_excursion)
-    explaining = {"time": ("time (s)", cmp_.time), "position": ("position", cmp_.path),
-                  "velocity": ("velocity", cmp_.velocity),
+    pu = cmp_.position_unit or ""
+    explaining = {"time": ("time (s)", cmp_.time), "position": (f"position ({pu})" if pu else "position", cmp_.path),
+                  "velocity": (f"velocity ({pu}/s)" if pu else "velocity", cmp_.velocity),
                   "reversals": ("significant reversals", significant_reversals(cmp_.path, th))}
     if cmp_.load is not None:
-        explaining["load"] = ("normal load", cmp_.load)
+        lu = rec.units.get("normal_load", "")
+        explaining["load"] = (f"normal load ({lu})" if lu else "normal load", cmp_.load)
     say(1.0, "done")
     return Diagnosis(effects=named, steps=steps, confounded=confounded, candidates=cands_out, rms_before=rms0,
                      rms_after=_rms((meas - after)[allm]), rms_base_refit=rms_alt, regimes=regimes,

@@ -389,12 +389,14 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         dec = decisions[side]
         other = decisions["negative" if sign > 0 else "positive"]
         if dec.fit is None:
+            # why the side is held: no levels, or levels that show no sliding (``fit_side_honest``)
+            why = f"no {side}-velocity levels" if not dec.held.get("Fc", "").startswith("the levels") else dec.held["Fc"]
             if other.fit is not None:
                 vals = {k: -v if k in ("Fs", "Fc", "vs") else v for k, v in other.fit.values.items()}
-                reason = f"no {side}-velocity levels: mirrored from the {'negative' if sign > 0 else 'positive'} side"
+                reason = f"{why}: mirrored from the {'negative' if sign > 0 else 'positive'} side"
             else:
                 vals = {k: getattr(getattr(p.stribeck, side), k) for k in NAMES}
-                reason = f"no {side}-velocity levels: kept {start}"
+                reason = f"{why}: kept {start}"
             held.update({f"stribeck.{side}.{k}": reason for k in NAMES})
             sides[side] = StribeckSide(**vals)
         else:
@@ -535,7 +537,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             + f" ({reach:.3g}) (give --params with this machine's curve)"
             if scaled is not p.transition_curve else f"{why_curve}: kept {start}")
         p = p.replace(transition_curve=scaled)
-        held["n"] = f"{why_curve}: kept {start}"
+        # n has no units: the paper's value, not "in its units" (it is the held curve's exponent)
+        held["n"] = (f"{why_curve}: held at the paper's {p.n:g}, the exponent of the curve held beside it"
+                     if base is None else f"{why_curve}: kept {start}")
     else:
         held["transition_curve"] = f"{why_curve}: kept {start}"
         held["n"] = f"{why_curve}: kept {start}"

@@ -267,6 +267,15 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
     vs_hold = sign * float(np.min(a))
     if s2_ok:
         fit = _coulomb_viscous(levels, sign, viscous=True)
+        if _trouble(fit, ("Fc",)) or fit.values["Fc"] * sign <= 0:
+            # a Coulomb level not told from 0 (or of the other side's sign) beside a slope through
+            # the levels: friction proportional to the speed, which a dry contact shows while it
+            # creeps towards sliding, not once it slides (a Dahl contact under force ramps to
+            # 0.7 F_s read F_c = 3·10⁻¹⁹ ± 1.5 N and σ2 = 5.8·10⁵ N·s/m); the side is held
+            why = (f"the levels ({k}, |v| {np.min(a):.3g}–{np.max(a):.3g}) give a Coulomb level not told from 0 "
+                   f"(F_c = {fit.values['Fc']:.3g} ± {fit.stderr['Fc']:.2g}, σ2 = {fit.values['sigma2']:.3g}): "
+                   f"friction rising in proportion to the speed, as a contact creeping towards sliding, not sliding")
+            return SideDecision(None, {n: why for n in NAMES}, "held")
         held = {"Fs": f"{why}: held at Fc (no Stribeck effect)", "vs": f"{why}: held at the slowest level's speed",
                 "delta": f"{why}: held at {delta_hold:g}"}
         fit.values["vs"], fit.values["delta"] = vs_hold, delta_hold

@@ -7,7 +7,7 @@ import pytest
 from scipy.integrate import quad
 
 from leuven_friction.identify.data import DataError, load_recording
-from leuven_friction.identify.markov import Levels, fit_stribeck
+from leuven_friction.identify.markov import NAMES, Levels, fit_stribeck
 from leuven_friction.identify.mle import Branch, Gaussian, PreslidingData, Quantized, branch_displacement, fit_transition_curve
 from tests.baselines import fit_transition_curve_unweighted
 from tests.paper import TABLE_II_F, TABLE_II_Z, TABLE_ONE, two_sided
@@ -212,3 +212,21 @@ def test_a_side_sent_to_coulomb_viscous_names_what_was_undetermined():
     dec = fit_side_honest(Levels(v, F, np.full(len(v), sd**2), np.full(len(v), 500.0)), 1)
     assert set(dec.held) >= {"Fs", "vs", "delta"}
     assert "neither is sigma2" in dec.held["Fs"], dec.held["Fs"]
+
+
+@pytest.mark.parametrize("sign", [1, -1])
+def test_levels_whose_friction_is_proportional_to_the_speed_are_not_an_s_of_v(sign):
+    # a contact creeping towards sliding under force ramps (a Dahl contact near F_c): its "levels"
+    # have friction in proportion to a slow speed, no Coulomb level to tell from 0. Held, with
+    # that reason, not written as F_c = 0 ± 1.5 and a viscous slope of 10⁶ N·s/m
+    from leuven_friction.identify.markov import fit_side_honest
+
+    rng = np.random.default_rng(5)
+    v = sign * np.geomspace(2e-5, 6e-5, 7)
+    F = 9e5 * v + rng.normal(0, 1.0, len(v))
+    dec = fit_side_honest(Levels(v, F, np.full(len(v), 1.0), np.full(len(v), 300.0)), sign)
+    assert dec.fit is None and dec.model == "held" and set(dec.held) == set(NAMES)
+    assert "not told from 0" in dec.held["Fc"] and "creeping" in dec.held["Fc"], dec.held["Fc"]
+    # a true Coulomb level beside the same slope stays a fit
+    dec = fit_side_honest(Levels(v, F + sign * 40.0, np.full(len(v), 1.0), np.full(len(v), 300.0)), sign)
+    assert dec.fit is not None and abs(dec.fit.values["Fc"] - sign * 40.0) < 5 * dec.fit.stderr["Fc"]
