@@ -63,7 +63,44 @@ class FitResult:
 def _merge_levels(parts: list[Levels]) -> Levels:
     if not parts:
         return Levels(*(np.zeros(0) for _ in range(4)))
+    if len(parts) == 1:
+        return parts[0]
+    # (the levels' times are each recording's own clock: not kept across recordings)
     return Levels(*(np.concatenate([getattr(p, k) for p in parts]) for k in ("velocity", "friction", "variance", "count")))
+
+
+TREND_P = 0.01  # the levels' residuals follow their time at this significance (Spearman): said in the notes
+
+
+def misfit_in_time(levels: Levels, fit, sign: int) -> str:
+    """Where a side's S(v) misfits its levels: whether the misfit follows the time the levels
+    were run in, in words ("" if not, or their times are not known). A drift in time along the
+    session (a warm-up, a wear-in) leaves the levels above and below any curve of the speed in
+    the order they were run, which the χ² alone does not say (a slide made apart, its friction
+    rising 25 % over the first minute, was fitted F_s = F_c and a viscous slope a quarter of the
+    other side's, with only χ² = 2.3·10⁵ for a hint)."""
+    from scipy.stats import spearmanr
+
+    from .markov import stribeck_plus_viscous
+
+    if levels.time is None:
+        return ""
+    m = levels.velocity * sign > 0
+    if m.sum() < 5:
+        return ""
+    v, t = levels.velocity[m], levels.time[m]
+    theta = [fit.values[k] for k in NAMES]
+    r = (levels.friction[m] - stribeck_plus_viscous(theta, v)) * sign / np.sqrt(np.maximum(levels.variance[m], 1e-300))
+    rho, p = spearmanr(t, r)
+    if not np.isfinite(p) or p >= TREND_P:
+        return ""
+    rho_v = spearmanr(t, np.abs(v))[0]
+    return (f"; the misfit follows the time the levels were run in (Spearman ρ {rho:+.2f} between their times and "
+            f"their friction above the curve, over {int(m.sum())} levels, p = {p:.2g}): the friction logged changed "
+            f"during the session (a warm-up, a wear-in, a load, a force sensor's drifting offset), which no S(v) holds"
+            + (f" — here the levels were run in order of speed (ρ {rho_v:+.2f}), so a form that misfits their "
+               f"speeds trends with time as well" if abs(rho_v) >= 0.8 else "")
+            + "; `diagnose` tests a drift in time")
 
 
 def left_out(levels: Levels) -> str:
@@ -589,7 +626,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                 # it does not (slow holds that stick and slip, a drift or a load along the sweep)
                 notes.append(f"{side} side: this form misfits the levels (χ² = {dec.fit.chi2:.3g} for {dec.fit.dof} "
                              f"degrees of freedom, p < {MISFIT_P:g}): its σ assume it fits; see the levels against "
-                             f"the curve before trusting them")
+                             f"the curve before trusting them" + misfit_in_time(levels, dec.fit, 1 if side == "positive" else -1))
     if tfit is not None:
         for i in range(1, len(tfit.F)):
             unc[f"transition_curve.F.{i}"] = float(tfit.stderr[i])

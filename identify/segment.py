@@ -340,7 +340,7 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     F = prep.friction if prep.friction is not None else prep.force
     v, x, t = prep.velocity, rec.position, rec.time
     w = max(th.window, 5)
-    out = ([], [], [], [])
+    out = ([], [], [], [], [])
     opposing = 0
     for a, b in prep.chunks:
         vv = v[a:b]
@@ -378,7 +378,9 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
             out[1].append(float(np.mean(f)))
             out[2].append(_batch_var_of_mean(f))
             out[3].append(e - s)
-    return sliding_only(Levels(*(np.array(o, dtype=float) for o in out), opposing=opposing))
+            out[4].append(float(np.mean(t[s:e])))
+    return sliding_only(Levels(*(np.array(o, dtype=float) for o in out[:4]), opposing=opposing,
+                               time=np.array(out[4], dtype=float)))
 
 
 CREEP_FRICTION = 0.6  # creep holds less than this fraction of its direction's median level friction,
@@ -413,8 +415,7 @@ def sliding_only(levels: Levels) -> Levels:
         keep[m] = ~((weak & short) | ((weak | short) & isolated))
     if keep.all():
         return levels
-    return Levels(*(a[keep] for a in (levels.velocity, levels.friction, levels.variance, levels.count)),
-                  opposing=levels.opposing, creep=levels.creep + int(np.sum(~keep)))
+    return levels.kept(keep, creep=levels.creep + int(np.sum(~keep)))
 
 
 SPEED_BIN = math.log(1.2)  # sliding pooled into speed levels this wide in log|v| (``speed_levels``)

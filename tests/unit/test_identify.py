@@ -230,3 +230,26 @@ def test_levels_whose_friction_is_proportional_to_the_speed_are_not_an_s_of_v(si
     # a true Coulomb level beside the same slope stays a fit
     dec = fit_side_honest(Levels(v, F + sign * 40.0, np.full(len(v), 1.0), np.full(len(v), 300.0)), sign)
     assert dec.fit is not None and abs(dec.fit.values["Fc"] - sign * 40.0) < 5 * dec.fit.stderr["Fc"]
+
+
+def test_a_misfit_of_the_levels_that_follows_their_time_is_said():
+    # a sweep that visits each of 8 speeds twice, shuffled, on a contact warming up (friction
+    # × 1 + 0.25·(1 − e^(−t/30 s))): no S(v) holds both visits of a speed, and the levels lie
+    # above the fitted curve late and below it early. The same levels without the drift: nothing said
+    from leuven_friction.identify.fit import misfit_in_time
+    from leuven_friction.identify.markov import fit_side_honest
+
+    rng = np.random.default_rng(11)
+    speeds = np.geomspace(2e-4, 5e-2, 8)
+    v = np.concatenate([rng.permutation(speeds), rng.permutation(speeds)])
+    t = 5.0 + 6.0 * np.arange(len(v))
+    S = 60.0 + 25.0 * np.exp(-np.sqrt(v / 1.5e-3)) + 400.0 * v
+    sd = 0.05
+    for drift, said in ((1.0 + 0.25 * (1.0 - np.exp(-t / 30.0)), True), (np.ones_like(t), False)):
+        F = S * drift + rng.normal(0, sd, len(v))
+        lv = Levels(v, F, np.full(len(v), sd**2), np.full(len(v), 500.0), time=t)
+        dec = fit_side_honest(lv, 1)
+        note = misfit_in_time(lv, dec.fit, 1)
+        assert ("follows the time the levels were run in" in note) == said, note
+        if said:
+            assert "order of speed" not in note  # the visits are shuffled: time and speed are apart
