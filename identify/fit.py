@@ -18,13 +18,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.stats import chi2 as chi2_dist
+from scipy.stats import spearmanr
 
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
 from ..model.params import get_value, spec_of
 
 from .data import Recording
 from .errors import IdentificationError
-from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest
+from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest, stribeck_plus_viscous
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, Prepared, constant_velocity_levels, crossing_range, crossings,
                       force_branches, motion_branches, noise_sd, prepare, sliding_levels)
@@ -79,10 +80,6 @@ def misfit_in_time(levels: Levels, fit, sign: int) -> str:
     the order they were run, which the χ² alone does not say (a slide made apart, its friction
     rising 25 % over the first minute, was fitted F_s = F_c and a viscous slope a quarter of the
     other side's, with only χ² = 2.3·10⁵ for a hint)."""
-    from scipy.stats import spearmanr
-
-    from .markov import stribeck_plus_viscous
-
     if levels.time is None:
         return ""
     m = levels.velocity * sign > 0
@@ -426,8 +423,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         dec = decisions[side]
         other = decisions["negative" if sign > 0 else "positive"]
         if dec.fit is None:
-            # why the side is held: no levels, or levels that show no sliding (``fit_side_honest``)
-            why = f"no {side}-velocity levels" if not dec.held.get("Fc", "").startswith("the levels") else dec.held["Fc"]
+            why = dec.held["Fc"]  # no levels, or levels that show no sliding (``fit_side_honest``)
             if other.fit is not None:
                 vals = {k: -v if k in ("Fs", "Fc", "vs") else v for k, v in other.fit.values.items()}
                 reason = f"{why}: mirrored from the {'negative' if sign > 0 else 'positive'} side"

@@ -233,7 +233,8 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
     a = np.abs(levels.velocity[m])
     held = {}
     if k == 0:
-        return SideDecision(None, {n: "no constant-velocity levels on this side" for n in NAMES}, "held")
+        word = "positive" if sign > 0 else "negative"
+        return SideDecision(None, {n: f"no {word}-velocity levels" for n in NAMES}, "held")
     speeds = distinct_speeds(a)
     if k >= STRIBECK_MIN_LEVELS and speeds >= STRIBECK_MIN_SPEEDS:
         fit = fit_side(levels, sign)
