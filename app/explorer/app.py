@@ -37,11 +37,13 @@ CANVAS_MIN = 125  # px the dock layout leaves to the (empty) 3D canvas
 
 # The slider's own number box is a browser numeric input that garbles "1e-3": hidden, the
 # text box above each slider is the number entry. viser's own notifications (upload
-# progress) go to the bottom, so they never cover the plot tabs.
+# progress) go to the bottom, so they never cover the plot tabs. The fit's and the diagnosis's
+# reports (markdown code blocks) wrap their long lines instead of running off the panel.
 STYLE = """<style>
 .mantine-Slider-root + .mantine-NumberInput-root, .mantine-Slider-root ~ .mantine-NumberInput-root,
 .mantine-Slider-root ~ div .mantine-NumberInput-input {display:none !important;}
 .mantine-Notifications-root[data-position="top-left"] {top:auto !important; bottom:12px !important;}
+pre {white-space:pre-wrap !important; overflow-wrap:anywhere;}
 </style>"""
 
 

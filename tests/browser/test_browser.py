@@ -231,6 +231,10 @@ def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_fi
         page.get_by_role("tab", name="Diagnose").click()
         shown = page.locator("body").inner_text()
         assert "Candidates, last round" in shown and "settling required" not in shown  # the box reached the diagnosis
+        # the report's long lines wrap inside the tab: none runs past the block's right edge
+        over = page.evaluate("""() => [...document.querySelectorAll('pre')].filter(e => e.offsetParent &&
+            e.textContent.includes('Candidates, last round')).map(e => e.scrollWidth - e.clientWidth)""")
+        assert over and max(over) <= 1, over
         with page.expect_download(timeout=30_000) as dl:
             page.get_by_role("button", name="Save plot data (CSV)").locator("visible=true").first.click()
         rows = Path(dl.value.path()).read_text().splitlines()
