@@ -2212,6 +2212,9 @@ class Diagnosis:
     # diagnosis of a file this one wrote counts reversals from a quarter of that file's presliding
     # range (``reversal_threshold``), so it may compare another span unless given the same
     reading: dict = field(default_factory=dict)
+    # nothing named, and the base refitted alone leaves clearly less than the model as given
+    # (over BASE_OFF_NOISE noise floors): the base, not a missing effect, is what is off
+    base_off: bool = False
 
     # the first named effect, for callers that show one
     @property
@@ -2289,6 +2292,7 @@ class Diagnosis:
             "space": self.space, "noise": self.noise, "rms_before": self.rms_before, "rms_after": self.rms_after,
             "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
             "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
+            "base_off": self.base_off,
             "elsewhere": [c["name"] for c in self.elsewhere], "written_effects": self.written_effects(),
             "candidates": self.candidates, "notes": list(self.notes),
             "work": None if self.work is None else asdict(self.work),
@@ -2703,6 +2707,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     started = perf_counter()
     say = progress or (lambda frac, msg: None)
     say(0.01, "choosing where to compare")
+    lacking = [e["name"] for e in params.effects if e["name"] in EFFECTS and "load" in EFFECTS[e["name"]].needs]
+    if lacking and rec.normal_load is None:
+        # (a set diagnosed on a recording with a load column, then used on one without)
+        raise DataError(f"{rec.source}: the model carries {lacking[0]}, which needs a normal-load column, and the "
+                        f"recording has none: diagnose it with a model without that effect (fit this recording "
+                        f"first), or give the load (--columns normal_load=<column>)")
     cmp_ = comparison_of(rec, params, s.space, dict(s.reading))
     base_params = params.replace(effects=())
     cmp_.z_presliding = presliding_range(params)
@@ -3120,7 +3130,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     rebased = not named and s.refit_base
     after = final.pred if (named or rebased) else pred_given_c
     rms_alt = _rms((meas - null.pred)[allm])
-    if not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0 and rms0 > BASE_OFF_NOISE * cmp_.noise:
+    base_off = bool(not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0 and rms0 > BASE_OFF_NOISE * cmp_.noise)
+    if base_off:
         # (a model within two noise floors is at the noise level, whatever a refit gains there)
         # by the file's name (a fit given the path from elsewhere made the same file), the
         # diagnosis's own record first
@@ -3216,7 +3227,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      model_after=after, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining,
                      unused=unused, work=DiagnosisWork(perf_counter() - started, engine.sims, engine.sim_seconds),
                      reading={"window": int(cmp_.window), "v_rest": float(cmp_.v_rest),
-                              "min_excursion": float(cmp_.min_excursion)})
+                              "min_excursion": float(cmp_.min_excursion)}, base_off=base_off)
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written

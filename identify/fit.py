@@ -381,6 +381,15 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
              "machine's values)")
     notes: list = []
     held: dict = {}
+    if p.effects:
+        # the fit estimates the model without effects (none enters its estimators), so the start's
+        # effects are not carried into it: written beside a base fitted to these recordings they
+        # would count twice what the fit took up, or need a signal these recordings lack (a web
+        # session's ripple accepted on one file, then a fit of another: its diagnosis failed on a
+        # load effect the new file had no column for)
+        notes.append(f"the starting set's effects ({', '.join(e['name'] for e in p.effects)}) are not carried into "
+                     f"this fit: it estimates the model without effects; `diagnose` names and fits them")
+        p = p.replace(effects=())
     say(0.05, "deriving thresholds and finding constant-velocity levels")
     preps: list[Prepared] = []
     for r in recordings:

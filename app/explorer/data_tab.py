@@ -72,6 +72,7 @@ class DataTab:
         self.ctx = ctx
         self.propose = propose
         self.columns: list[str] = []
+        self.previous = None  # the recording before an upload: kept where the upload cannot be read at all
         self.sign_note = ""
         self._quiet = False
 
@@ -109,6 +110,10 @@ class DataTab:
         def _(event) -> None:
             f = self.gui_upload.value
             with ctx.lock:
+                # what was there, to keep if this file cannot be read at all (``_load``)
+                s = ctx.session
+                self.previous = (s.recording_name, s.recording_bytes, dict(s.mapping or {}), s.flip_friction,
+                                 ctx.recording, ctx.fit) if ctx.recording is not None else None
                 ctx.session.recording_name, ctx.session.recording_bytes = f.name, f.content
                 ctx.session.mapping = {}
                 ctx.session.flip_friction = None
@@ -179,11 +184,28 @@ class DataTab:
             rec = load_recording(content, name=name, columns=s.mapping or None, require=("time",))
         except DataError as e:
             msg = web_message(e, name)
+            # a bad cell is the file's to correct; a column not found or not told apart is chosen here
+            bad_row = re.search(r"\brow \d+", msg)
+            previous, self.previous = self.previous, None
+            if previous is not None and (bad_row or not self.columns):
+                # nothing to choose on this page (no table, or a row to correct in the file): the
+                # recording that was there stays (a picture uploaded by mistake had replaced it)
+                with ctx.lock:
+                    (s.recording_name, s.recording_bytes, s.mapping, s.flip_friction, ctx.recording,
+                     ctx.fit) = previous
+                    ctx.dirty = True
+                self.columns = header_columns(s.recording_bytes)
+                for sig, h in self.gui_map.items():
+                    h.options = (NONE, *self.columns)
+                    h.value = ctx.recording.columns.get(sig, NONE)
+                kept = f"{msg} — {previous[0]} is kept"
+                self.gui_status.content = f"⚠ {kept}"
+                ctx.notify("Cannot read the recording", kept, "red", 10.0)
+                return
             with ctx.lock:
                 ctx.recording, ctx.fit = None, None
             self.gui_status.content = f"⚠ {msg}"
-            # a bad cell is the file's to correct; a column not found or not told apart is chosen here
-            fix = ("Correct that row of the file (or remove it) and upload it again." if re.search(r"\brow \d+", msg)
+            fix = ("Correct that row of the file (or remove it) and upload it again." if bad_row
                    else "Choose the columns under *Columns* below and press *Apply columns*.")
             self.gui_info.content = (f"**{name}** could not be read: {msg}\n\nColumns in the file: "
                                      + ", ".join(f"`{c}`" for c in self.columns) + f"\n\n{fix}")
@@ -193,6 +215,7 @@ class DataTab:
             ctx.notify("Cannot read the recording", msg, "red", 10.0)
             ctx.changed("recording")
             return
+        self.previous = None
         for sig, h in self.gui_map.items():
             h.value = rec.columns.get(sig, NONE)
         self.gui_columns.visible = True
@@ -357,8 +380,17 @@ def gap(rec: Recording, p) -> float | None:
 
 
 def _no_cli(text: str) -> str:
-    """A note without the command line's option hints ('; --fit-n estimates it'): a web user has none."""
-    return re.sub(r";?\s*(use |see )?--[a-z][\w-]*[^;)]*", "", str(text))
+    """A note without the command line's option hints ('; --fit-n estimates it'): a web user has
+    none. The whole clause that names an option goes (up to the `;` or brackets around it), not
+    the option alone: "(another machine's; give --params with this machine's)" had become
+    "(another machine's; give)"."""
+    t = re.sub(r"[^;()]*--[a-z][\w-]*[^;()]*", "", str(text))
+    for a, b in (("(;", "("), (";)", ")"), ("( ", "("), (" )", ")")):
+        while a in t:
+            t = t.replace(a, b)
+    t = re.sub(r"\s*\(\s*\)", "", t)
+    t = re.sub(r";\s*;", ";", t)
+    return re.sub(r"\s{2,}", " ", re.sub(r";\s*$", "", t)).strip()
 
 
 def fit_summary(res) -> str:
@@ -380,5 +412,5 @@ def fit_summary(res) -> str:
         lines.append("**Held**: " + ", ".join(w for w, ok in (("S(v)", res.stribeck_fit),
                                                               ("transition curve", res.transition_fit)) if not ok))
     if res.notes:
-        lines.append("Notes:\n" + "\n".join(f"- {_no_cli(n)}" for n in res.notes))
+        lines.append("Notes:\n" + "\n".join(f"- {t}" for t in map(_no_cli, res.notes) if t))
     return "\n\n".join(lines)

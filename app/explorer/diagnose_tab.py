@@ -21,6 +21,7 @@ class DiagnoseTab:
     def __init__(self, ctx: Context, gui: viser.GuiApi, panel, propose):
         self.ctx = ctx
         self.propose = propose
+        self.shown = None  # the recording whose diagnosis the tab shows
         with panel.add_tab("Diagnose"):
             self.gui_text = gui.add_markdown("Upload a recording, then press **Diagnose** (left): the workflow looks "
                                              "for the physical effect the model misses, adds it and refits. The "
@@ -68,6 +69,19 @@ class DiagnoseTab:
         if reason == "recording" and not self.job.busy():
             rec = self.ctx.recording
             self.gui_run.disabled = rec is None or rec.position is None
+            if rec is not None and self.shown is not None and self.shown != self.ctx.session.recording_name:
+                self._show_none(f"The last diagnosis was of {self.shown}; press **Diagnose** (left) for "
+                                f"{self.ctx.session.recording_name}.")
+
+    def _show_none(self, text: str) -> None:
+        """The tab without a diagnosis: ``text``, no figures (a diagnosis of another recording, or
+        one that failed, is not left on show as if it were this one's)."""
+        with self.ctx.client.atomic():
+            self.gui_text.content = text
+            for handle in self.gui_plots:
+                handle.visible = False
+            self.gui_csv.visible = False
+        self.shown = None
 
     def _busy(self, on: bool) -> None:
         self.gui_run.disabled = on
@@ -108,9 +122,11 @@ class DiagnoseTab:
             self._busy(False)
             msg = str(e) if name in str(e) else f"{name}: {e}"
             self.gui_status.content = f"⚠ {msg}"
+            self._show_none(f"**Diagnosis of {name} failed**: {msg}")
             ctx.notify("Diagnosis failed", msg, "red")
             return
         self._busy(False)
+        self.shown = name
         with ctx.client.atomic():
             self.gui_text.content = f"**Diagnosis of {name}**\n\n```\n{d.text()}\n```"
             figures = plots.diagnosis_report_figures(d)[:MAX_FIGURES]
@@ -138,6 +154,10 @@ def status_line(d) -> str:
     others = d.not_named()
     if d.effects:
         return f"Found **{', '.join(d.effects)}**: see the proposal." + (f" Also: {'; '.join(others)}." if others else "")
+    gap = (f"the model leaves {d.rms_before:.3g}, {d.rms_before / d.noise:.1f} × the noise floor" if d.noise > 0
+           else f"the model leaves {d.rms_before:.3g}")
+    base = (f"; the base, not a missing effect, is what is off (refitted alone it leaves {d.rms_base_refit:.3g}): "
+            f"fit it to this recording" if d.base_off else "")
     if others:
-        return f"Nothing named: {'; '.join(others)} (the Diagnose tab has the evidence)."
-    return "No significant missing effect: the model explains the data (nothing proposed)."
+        return f"Nothing named: {'; '.join(others)}. {gap[0].upper()}{gap[1:]}{base} (the Diagnose tab has the evidence)."
+    return f"No missing effect named (nothing proposed): {gap}{base}."

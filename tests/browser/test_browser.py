@@ -407,3 +407,32 @@ def test_diagnosis_report_reads_in_the_window(chromium, tribometer_file, tmp_pat
                                         and t["bottom"] <= r["box"]["bottom"] for t in r["ticks"]), r
     shot(page, "diagnosis_report_1280")
     page.close()
+
+
+def test_an_unreadable_upload_keeps_the_recording_that_was_there(chromium, tmp_path):
+    # a picture saved as .csv by mistake, then a table whose time goes backwards: each is refused
+    # with its reason, and the recording uploaded before stays, plotted and ready to fit
+    t = np.arange(3000) * 2e-3
+    q = 0.2 * np.sin(2 * np.pi * 0.5 * t)
+    tau = 3.0 * np.tanh(np.gradient(q, t) / 0.01)
+    good = tmp_path / "joint_ok.csv"
+    good.write_text("time [s],position [rad],torque [N*m]\n" + "".join(f"{a:.4f},{b:.8f},{c:.5f}\n" for a, b, c in zip(t, q, tau)))
+    picture = tmp_path / "picture.csv"
+    picture.write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(range(256)) * 20)
+    back = tmp_path / "backwards.csv"
+    back.write_text("time [s],position [rad],torque [N*m]\n" + "".join(f"{a:.4f},{b:.8f},{c:.5f}\n" for a, b, c in
+                                                                     zip(np.r_[t[:50], t[40:100]], q, tau)))
+    with running_server() as (url, _):
+        page = open_app(chromium, url, 1280, 720)
+        upload_for(page, "Upload recording").set_input_files(str(good))
+        page.get_by_role("tab", name="Data").click()
+        wait_plot(page, RECORDING, None)
+        for bad, why in ((picture, "not a text file"), (back, "does not increase")):
+            upload_for(page, "Upload recording").set_input_files(str(bad))
+            wait_text(page, why, 60)
+            body = page.locator("body").inner_text()
+            said = [ln for ln in body.splitlines() if why in ln and bad.name in ln]
+            assert said and "joint_ok.csv is kept" in said[0], body[-2000:]
+            assert page.get_by_role("button", name="Fit").first.is_enabled()
+            assert plot_traces(page, RECORDING), "the recording's plot is gone"
+        page.close()

@@ -95,3 +95,8 @@ def test_web_messages_name_the_file_and_no_command_line_options():
                       "run7.tsv")
     assert msg.startswith("run7.tsv: ") and "--" not in msg and "Columns in the Data tab" in msg
     assert _no_cli("fixed at 7 (the paper's choice; --fit-n estimates it)") == "fixed at 7 (the paper's choice)"
+    # the clause that names the option goes whole, not the option alone
+    assert (_no_cli("held at 5 (another machine's; give --params with this machine's)")
+            == "held at 5 (another machine's)")
+    assert _no_cli("kept from the paper's axis (give --params with this machine's values)") == "kept from the paper's axis"
+    assert _no_cli("a; see --threshold x; b") == "a; b"

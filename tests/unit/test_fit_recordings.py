@@ -528,3 +528,18 @@ def test_a_refinement_cut_short_by_its_budget_is_continued_once_and_says_so(monk
         assert 2 < rf["evaluations"] <= 4 and "continued once" in rf["what"]
     else:
         assert "less than 10 %" in rf["reason"]
+
+
+def test_the_starting_sets_effects_are_not_carried_into_a_fit():
+    # a set that carries a load effect (diagnosed on another recording) as the start of a fit of
+    # one without a load column: the fit estimates the model without effects, so the result holds
+    # none, and says so — written with it, its diagnosis failed for want of a load signal
+    from leuven_friction.identify.diagnose import diagnose
+    from leuven_friction.model import default_params
+
+    rec = load_recording("sample_data/constant_velocity.csv")
+    start = default_params().replace(effects=({"name": "normal_load", "params": {"alpha": 0.8, "N0": 500.0}},))
+    res = fit_recordings([rec], base=start, refine=False)
+    assert res.params.effects == ()
+    assert any("effects (normal_load) are not carried" in n for n in res.notes), res.notes
+    assert diagnose(rec, res.params).params_before.effects == ()

@@ -179,6 +179,10 @@ def test_a_diagnosis_of_its_own_fit_says_the_fit_is_what_misses_not_to_fit_again
     assert d.effects == []
     off = [n for n in d.notes if "is what is off" in n]
     assert off and "the fit of si.csv that made the file" in off[0] and "leuven-friction fit" not in off[0], d.text()
+    # the explorer's line under its button says the same, not that the model explains the data
+    from leuven_friction.app.explorer.diagnose_tab import status_line
+
+    assert d.base_off and "the base, not a missing effect, is what is off" in status_line(d), status_line(d)
 
 
 def test_the_base_refitted_alone_is_written_when_asked_and_closes_the_loop(fits):
@@ -218,6 +222,10 @@ def test_a_fit_at_the_noise_floor_is_not_said_to_be_off():
     d = diagnose(rec, fit_recordings([rec]).params)
     assert d.effects == [] and d.steps[0]["rms"] < 2 * d.noise, d.text()
     assert not [n for n in d.notes if "is what is off" in n], d.text()
+    from leuven_friction.app.explorer.diagnose_tab import status_line
+
+    assert not d.base_off and status_line(d).startswith("No missing effect named"), status_line(d)
+    assert "is what is off" not in status_line(d)
 
 
 def test_measured_friction_logged_as_a_torque_is_pointed_out(crank_fit):
