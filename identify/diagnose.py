@@ -3427,10 +3427,29 @@ def separating_experiment(a: str, b: str) -> str:
     return f"for {a}: {ea.separated_by}; for {b}: {eb.separated_by}"
 
 
-def model_with_effects(params: FrictionParams, rec: Recording) -> np.ndarray:
-    """The friction predicted by ``params`` with its effects along the recorded motion."""
+@dataclass(frozen=True)
+class FrictionCompared:
+    """A recording's friction beside a model's, as the diagnosis compares them."""
+
+    time: np.ndarray
+    measured: np.ndarray
+    model: np.ndarray
+
+    @property
+    def rms(self) -> float:
+        return _rms(self.measured - self.model)
+
+
+def friction_compared(rec: Recording, params: FrictionParams, cmp_: Comparison | None = None) -> FrictionCompared:
+    """The recording's friction and the one ``params`` (its effects included) predicts, compared
+    as the diagnosis compares them (``comparison_of``, or ``cmp_`` made by it for this
+    recording): friction taken from an applied force by eq. (8) averaged over the comparison's
+    window, never from a twice differentiated position, and the model driven along the smoothed
+    path and averaged the same way. The explorer's proposals state this gap and plot these two
+    (from I·ẍ differenced twice, a slide's clean fit had shown 33 N, the noise of I·ẍ alone 31 N,
+    where the diagnosis read 8.8 N)."""
     from ..model.effects import predict
 
-    if rec.position is None:
-        raise DataError(f"{rec.source}: needs a position column")
-    return predict(params, "displacement", Signals(time=rec.time, position=rec.position, load=rec.normal_load)).friction_force
+    cmp_ = cmp_ or comparison_of(rec, params, "friction")
+    model = predict(params, "displacement", Signals(time=cmp_.time, position=cmp_.path, load=cmp_.load)).friction_force
+    return FrictionCompared(cmp_.time, cmp_.measured, cmp_.filtered(model))

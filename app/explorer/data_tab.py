@@ -354,27 +354,13 @@ def fit_start(current, rec: Recording):
     return current.replace(model="leuven")
 
 
-def measured_friction(rec: Recording, p) -> np.ndarray:
-    """The friction column, or the applied force minus I·ẍ (eq. (8)) when only that exists."""
-    if rec.friction is not None:
-        return rec.friction
-    v = velocity_of(rec)
-    a = np.zeros_like(v)
-    a[1:] = np.diff(v) / np.diff(rec.time)
-    return rec.force - p.inertia * a
-
-
-def simulated_friction(p, rec: Recording) -> np.ndarray:
-    """The model's friction along the recorded displacement (eq. (3) driven by x(t))."""
-    from ...model import simulate_displacement
-
-    return simulate_displacement(p, rec.time, rec.position).friction_force
-
-
 def gap(rec: Recording, p) -> float | None:
-    """RMS of measured minus simulated friction along the recording, or None where it cannot be simulated."""
+    """RMS of the measured minus the model's friction, compared as the diagnosis compares them
+    (``identify.diagnose.friction_compared``), or None where it cannot be simulated."""
+    from ...identify.diagnose import friction_compared
+
     try:
-        return float(np.sqrt(np.mean((measured_friction(rec, p) - simulated_friction(p, rec)) ** 2)))
+        return friction_compared(rec, p).rms
     except (FrictionError, ValueError, FloatingPointError, TypeError):
         return None
 

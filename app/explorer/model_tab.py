@@ -59,6 +59,7 @@ class ModelTab:
         self.knot_controls: list[ParamControl] = []
         self.redraw_times: list[float] = []
         self._enabled_for = None
+        self._cmp = None  # (key, recording, comparison): ``_compared``'s last
         view = ctx.session.model_view
 
         # ---------------------------------------------------------------- view (right)
@@ -211,6 +212,31 @@ class ModelTab:
         self.job.submit("redraw", coalesce=True)
 
     # ------------------------------------------------------------------ the job: draw the latest state
+    def _compared(self, rec, p):
+        """The diagnosis's comparison of the recording (its first MAX_DATA_SIM samples) under
+        ``p``, or None where it has none (no position, no friction or applied force). Kept while
+        the recording and the inertia stay: the measured friction depends on nothing else, and a
+        slider's redraw simulates only the model along it."""
+        from ...identify.data import Recording
+        from ...identify.diagnose import comparison_of
+
+        if rec.position is None or (rec.friction is None and rec.force is None):
+            return None
+        key = (id(rec), float(p.inertia))
+        if self._cmp is not None and self._cmp[0] == key and self._cmp[1] is rec:
+            return self._cmp[2]
+        n = min(len(rec.time), MAX_DATA_SIM)
+        part = rec if n == len(rec.time) else Recording(
+            time=rec.time[:n], position=rec.position[:n], source=rec.source, normal_load=None if rec.normal_load is None
+            else rec.normal_load[:n], friction=None if rec.friction is None else rec.friction[:n],
+            force=None if rec.force is None else rec.force[:n], units=dict(rec.units))
+        try:
+            cmp_ = comparison_of(part, p, "friction")
+        except FrictionError:
+            cmp_ = None
+        self._cmp = (key, rec, cmp_)
+        return cmp_
+
     def _redraw(self) -> None:
         t0 = time.perf_counter()
         ctx = self.ctx
@@ -252,16 +278,15 @@ class ModelTab:
             pu = proposal.params.units
             notes.append(f"proposal in {pu['position']}, {pu['force']}; current model in {p.units['position']}, "
                          f"{p.units['force']}: accept it to see the data in its own units")
-        if rec is not None and rec.position is not None and (rec.friction is not None or rec.force is not None):
-            from ...identify.data import Recording
-            from .data_tab import measured_friction, simulated_friction
+        cmp_ = self._compared(rec, p) if rec is not None else None
+        if cmp_ is not None:
+            from ...identify.diagnose import friction_compared
 
-            n = min(len(rec.time), MAX_DATA_SIM)
-            part = rec if n == len(rec.time) else Recording(
-                time=rec.time[:n], position=rec.position[:n], source=rec.source,
-                friction=None if rec.friction is None else rec.friction[:n], force=None if rec.force is None else rec.force[:n])
-            model_lines = [(label, role, simulated_friction(q, part)) for label, role, q in shown if role != "overlay"]
-            bottom = {"kind": "data", "t": part.time, "measured": measured_friction(part, p), "model": model_lines,
+            n = len(cmp_.time)
+            # every set along the same comparison: the measured friction as the diagnosis takes it
+            model_lines = [(label, role, friction_compared(rec, q, cmp_).model) for label, role, q in shown
+                           if role != "overlay"]
+            bottom = {"kind": "data", "t": cmp_.time, "measured": cmp_.measured, "model": model_lines,
                       "name": rec.source + ("" if n == len(rec.time) else f" (first {n} samples)")}
         else:
             pw = to_piecewise(p)
