@@ -48,17 +48,15 @@ class ParamControl:
                  apply: Callable[[Field, float | None, str | None], str | None]):
         self.field = f
         self.apply = apply
+        self.value = value  # the model's value the widgets show (a refused entry goes back to it)
         self._quiet = threading.local()
-        unit = f.unit
-        label = f"{f.label} ({unit})" if unit else f.label
-        scale = " Slider: log scale." if f.scale == "log" else ""
-        self.text = gui.add_text(label, format_number(value),
-                                 hint=f"{f.hint}. Type e.g. 0.005, 5e-3 or 0,005.{scale}")
+        label = f"{f.label} ({f.unit})" if f.unit else f.label
         self.label = label
+        self.text = gui.add_text(label, format_number(value), hint=self._text_hint(f))
         lo, hi = self._range(value)
         self.slider = gui.add_slider(" ", min=lo, max=hi, step=(hi - lo) / SLIDER_STEPS,
                                      initial_value=self._to_slider(value), marks=self._marks(lo, hi),
-                                     hint=f"{label}{' — log scale' if f.scale == 'log' else ''}")
+                                     hint=self._slider_hint(f))
 
         @self.text.on_update
         def _(_) -> None:
@@ -67,14 +65,17 @@ class ParamControl:
             try:
                 v = parse_number(self.text.value, self.field.label)
             except ParameterError as e:
-                self.apply(self.field, None, str(e))
+                self._refused(str(e))
                 return
             why = check_field(self.field, v)
             if why:
-                self.apply(self.field, None, why)
+                self._refused(why)
                 return
             if self.apply(self.field, v, None) is None:
+                self.value = v
                 self._move_slider(v)
+            else:
+                self._set_text(self.value)
 
         @self.slider.on_update
         def _(_) -> None:
@@ -82,7 +83,17 @@ class ParamControl:
                 return
             v = self._from_slider(self.slider.value)
             if self.apply(self.field, v, None) is None:
+                self.value = v
                 self._set_text(v)
+
+    @staticmethod
+    def _text_hint(f: Field) -> str:
+        return f"{f.hint}. Type e.g. 0.005, 5e-3 or 0,005.{' Slider: log scale.' if f.scale == 'log' else ''}"
+
+    @staticmethod
+    def _slider_hint(f: Field) -> str:
+        label = f"{f.label} ({f.unit})" if f.unit else f.label
+        return f"{label}{' — log scale' if f.scale == 'log' else ''}"
 
     # -- slider coordinates: the value itself, or log10 |value| for a log field
     def _to_slider(self, v: float) -> float:
@@ -122,6 +133,12 @@ class ParamControl:
         finally:
             self._quiet.on = False
 
+    def _refused(self, why: str) -> None:
+        """An entry the model cannot take: said (``apply`` with the reason), and the box shows the
+        value the model still has — a refused "5e-5" left in a knot's box read as applied."""
+        self.apply(self.field, None, why)
+        self._set_text(self.value)
+
     def _set_text(self, v: float) -> None:
         self._quiet.on = True
         try:
@@ -136,8 +153,12 @@ class ParamControl:
             self.field = f
             self.label = f"{f.label} ({f.unit})" if f.unit else f.label
             self.text.label = self.label
+            # the hints name the units too (they kept the paper's N·m and rad on a slide in N and m)
+            self.text.hint = self._text_hint(f)
+            self.slider.hint = self._slider_hint(f)
         if v is None:
             return
+        self.value = v
         self._set_text(v)
         lo, hi = self._range(v)
         self._quiet.on = True

@@ -178,6 +178,9 @@ class ModelTab:
                 error = str(e)
         if error is not None:
             self.gui_warn.content = f"⚠ not applied — {error}"
+            # and where the user is looking: the warning sits under the Model folder, out of view
+            # while a knot further down is edited
+            self.ctx.notify("Not applied", f"{f.label}: {error}", "red")
             return error
         self.ctx.set_params(p, "edit")
         return None

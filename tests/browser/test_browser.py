@@ -83,6 +83,8 @@ def test_scientific_notation_in_a_number_box(chromium, server):
     wait_text(page, "'abc' is not a number", 15)
     time.sleep(0.5)
     assert plot_signature(page, OVERVIEW) == after
+    # the box goes back to the value the model still has: a refused entry is not left showing
+    assert float(box.input_value().replace(",", ".")) == pytest.approx(1e-3), box.input_value()
     # large numbers in E notation and decimal commas
     fs_box = text_box(page, FS)
     fs_box.fill("2.5E2")
