@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import viser
 
-from ...model.effects import EFFECTS
+from ...model.effects import EFFECTS, format_values
 from ...model.errors import FrictionError
 from .. import plots
 from .context import Context, Proposal, plot_config
@@ -137,9 +137,13 @@ class DiagnoseTab:
             self.gui_csv.visible = True
         if d.effects:
             named = ", ".join(d.effects)
+            units = d.params_before.units
             text = ("Effects, in the order named: "
                     + "; ".join(f"**{name}** ({EFFECTS[name].description})" for name in d.effects)
-                    + ".\n\nGap after each step: "
+                    # the values written (every effect refitted together, ± 1 σ): they have no controls
+                    + ".\n\nAs written: " + "; ".join(f"**{e['name']}**: {format_values(e['name'], e['params'], units, e['sd'])}"
+                                                    for e in d.written_effects())
+                    + "\n\nGap after each step: "
                     + " → ".join(f"{s['rms']:.3g}" for s in d.steps)
                     + "\n\nPer regime (RMS before → after): "
                     + "; ".join(f"{k} {r['rms_before']:.3g} → {r['rms_after']:.3g}" for k, r in d.regimes.items()))

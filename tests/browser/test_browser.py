@@ -229,6 +229,9 @@ def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_fi
         body = page.locator("body").inner_text()
         found = re.search(r"Found (\S+): see the proposal", body)
         assert found and "normal_load" in found.group(1), body[-3000:]
+        # the proposal gives the effect's values as written (they have no controls)
+        written = re.search(r"As written: normal_load: [^\n]*alpha = ([0-9.]+)", body)
+        assert written and 0.3 < float(written.group(1)) < 3.0, body[-3000:]
         # the diagnosis figures' data in one CSV, one header
         page.get_by_role("tab", name="Diagnose").click()
         shown = page.locator("body").inner_text()
