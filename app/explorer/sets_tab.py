@@ -93,9 +93,12 @@ class SetsTab:
         # ---------------------------------------------------------------- proposal (left, top)
         self.gui_proposal = gui.add_folder("Proposal", visible=False, order=1.0)
         with self.gui_proposal:
-            self.gui_prop_text = gui.add_markdown("")
+            # what it is and its gap, then the buttons, then its details and numbers: a fit's table
+            # of every parameter had put Accept two screens down at 1280×720
+            self.gui_prop_head = gui.add_markdown("")
             self.gui_accept = gui.add_button("Accept", color="green", hint="make the proposal the current model")
             self.gui_discard = gui.add_button("Discard", hint="keep the current model")
+            self.gui_prop_text = gui.add_markdown("")
 
     def add_view(self, panel) -> None:
         """The Parameter sets tab (right) and the Files folder (left)."""
@@ -236,8 +239,8 @@ class SetsTab:
                 # and curve come from the levels and branches alone): said before it is accepted
                 gap += (f"\n\n⚠ The proposal leaves a larger gap along this recording than the current set "
                         f"({prop.gap_after / prop.gap_before:.2g}×): look at the plots before accepting it.")
-        self.gui_prop_text.content = (f"**{prop.label}**{gap}\n\n{prop.text}\n\n"
-                                      + compare_table(ctx.params, prop.params, "current", "proposed"))
+        self.gui_prop_head.content = f"**{prop.label}**{gap}"
+        self.gui_prop_text.content = f"{prop.text}\n\n" + compare_table(ctx.params, prop.params, "current", "proposed")
         self.gui_proposal.visible = True
         ctx.changed("proposal")
         ctx.notify("Proposal ready", f"{prop.label}: accept or discard it (left panel).", "green", 5.0)

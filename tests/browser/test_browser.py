@@ -185,6 +185,9 @@ def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_fi
         assert "reaction" in sign_line  # the generator logged the reaction force; the page says so
         # the fit comes back as a proposal: numbers, gap, estimated/held
         wait_text(page, "Accept", 240)
+        # its buttons come before its details: Accept is on the first screen of the controls
+        accept = page.get_by_role("button", name="Accept").first.bounding_box()
+        assert accept is not None and accept["y"] + accept["height"] <= 720, accept
         prop = page.locator("text=Gap").first.locator("xpath=ancestor::div[2]").inner_text()
         assert "Held" in page.locator("body").inner_text() and "Estimated" in page.locator("body").inner_text()
         gaps = [float(g) for g in re.findall(r"([0-9.]+(?:e-?\d+)?) N", prop)[:2]]
