@@ -365,12 +365,12 @@ def gap(rec: Recording, p) -> float | None:
         return None
 
 
-def _no_cli(text: str) -> str:
+def without_cli_hints(text: str) -> str:
     """A note without the command line's option hints ('; --fit-n estimates it'): a web user has
     none. The whole clause that names an option goes (up to the `;` or brackets around it), not
     the option alone: "(another machine's; give --params with this machine's)" had become
     "(another machine's; give)"."""
-    t = re.sub(r"[^;()]*--[a-z][\w-]*[^;()]*", "", str(text))
+    t = re.sub(r"[^;()]*--[a-z][\w-]*[^;()]*(\([^()]*\)[^;()]*)?", "", str(text))  # (and its own bracket)
     for a, b in (("(;", "("), (";)", ")"), ("( ", "("), (" )", ")")):
         while a in t:
             t = t.replace(a, b)
@@ -393,10 +393,10 @@ def fit_summary(res) -> str:
     if held:
         # each at the value its reason says (the current one, F_c, the slowest level's speed, …)
         lines.append(f"**Held** ({len(held)}), each as its reason says:\n"
-                     + "\n".join(f"- {k}: {_no_cli(r)}" for k, r in held.items()))
+                     + "\n".join(f"- {k}: {without_cli_hints(r)}" for k, r in held.items()))
     elif not res.stribeck_fit or not res.transition_fit:
         lines.append("**Held**: " + ", ".join(w for w, ok in (("S(v)", res.stribeck_fit),
                                                               ("transition curve", res.transition_fit)) if not ok))
     if res.notes:
-        lines.append("Notes:\n" + "\n".join(f"- {t}" for t in map(_no_cli, res.notes) if t))
+        lines.append("Notes:\n" + "\n".join(f"- {t}" for t in map(without_cli_hints, res.notes) if t))
     return "\n\n".join(lines)

@@ -12,6 +12,7 @@ from ...model.effects import EFFECTS, format_values
 from ...model.errors import FrictionError
 from .. import plots
 from .context import Context, Proposal, plot_config
+from .data_tab import without_cli_hints
 from .jobs import Cancelled, JobThread
 
 MAX_FIGURES = 6  # steps, signal, up to three named effects, cross-validation
@@ -120,7 +121,7 @@ class DiagnoseTab:
             raise
         except FrictionError as e:
             self._busy(False)
-            msg = str(e) if name in str(e) else f"{name}: {e}"
+            msg = without_cli_hints(str(e) if name in str(e) else f"{name}: {e}")
             self.gui_status.content = f"⚠ {msg}"
             self._show_none(f"**Diagnosis of {name} failed**: {msg}")
             ctx.notify("Diagnosis failed", msg, "red")
@@ -128,7 +129,9 @@ class DiagnoseTab:
         self._busy(False)
         self.shown = name
         with ctx.client.atomic():
-            self.gui_text.content = f"**Diagnosis of {name}**\n\n```\n{d.text()}\n```"
+            # the report without the command line's options (the page has its own controls, or none)
+            shown = "\n".join(without_cli_hints(ln) if "--" in ln else ln for ln in d.text().splitlines())
+            self.gui_text.content = f"**Diagnosis of {name}**\n\n```\n{shown}\n```"
             figures = plots.diagnosis_report_figures(d)[:MAX_FIGURES]
             for i, handle in enumerate(self.gui_plots):
                 if i < len(figures):

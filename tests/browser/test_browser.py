@@ -239,6 +239,7 @@ def test_upload_remap_fit_accept_diagnose_discard_reload(chromium, tribometer_fi
         page.get_by_role("tab", name="Diagnose").click()
         shown = page.locator("body").inner_text()
         assert "Candidates, last round" in shown and "settling required" not in shown  # the box reached the diagnosis
+        assert "diagnose --" not in shown  # the command line's options are the command line's, not the page's
         # the report's long lines wrap inside the tab: none runs past the block's right edge
         over = page.evaluate("""() => [...document.querySelectorAll('pre')].filter(e => e.offsetParent &&
             e.textContent.includes('Candidates, last round')).map(e => e.scrollWidth - e.clientWidth)""")

@@ -88,15 +88,18 @@ def test_overview_static_note_and_overlay_on_its_own_axes():
 
 
 def test_web_messages_name_the_file_and_no_command_line_options():
-    from leuven_friction.app.explorer.data_tab import _no_cli, web_message
+    from leuven_friction.app.explorer.data_tab import without_cli_hints, web_message
     from leuven_friction.identify.errors import DataError
 
     msg = web_message(DataError("no column for position (columns: a, b; name them with --columns position=<column>)"),
                       "run7.tsv")
     assert msg.startswith("run7.tsv: ") and "--" not in msg and "Columns in the Data tab" in msg
-    assert _no_cli("fixed at 7 (the paper's choice; --fit-n estimates it)") == "fixed at 7 (the paper's choice)"
+    assert without_cli_hints("fixed at 7 (the paper's choice; --fit-n estimates it)") == "fixed at 7 (the paper's choice)"
     # the clause that names the option goes whole, not the option alone
-    assert (_no_cli("held at 5 (another machine's; give --params with this machine's)")
+    assert (without_cli_hints("held at 5 (another machine's; give --params with this machine's)")
             == "held at 5 (another machine's)")
-    assert _no_cli("kept from the paper's axis (give --params with this machine's values)") == "kept from the paper's axis"
-    assert _no_cli("a; see --threshold x; b") == "a; b"
+    assert without_cli_hints("kept from the paper's axis (give --params with this machine's values)") == "kept from the paper's axis"
+    assert without_cli_hints("a; see --threshold x; b") == "a; b"
+    # with the clause's own bracket (a diagnosis's note on the base refitted alone)
+    assert (without_cli_hints("moves (see above); `diagnose --refit-base --out` writes it (it leaves 1.5); the rest")
+            == "moves (see above); the rest")
