@@ -51,7 +51,7 @@ class Context:
 
     def notify(self, title: str, body: str, color: str = "blue", seconds: float = 6.0) -> None:
         """A message at the top of the controls (pop-up notifications would cover the plot tabs)."""
-        mark = {"red": "⛔", "yellow": "⚠", "green": "✔"}.get(color, "ℹ")
+        mark = {"red": "✖", "yellow": "⚠", "green": "✔"}.get(color, "ℹ")
         self.status(f"{mark} **{title}** — {body}")
 
     def changed(self, reason: str) -> None:
