@@ -218,8 +218,9 @@ class ModelTab:
     def _compared(self, rec, p):
         """The diagnosis's comparison of the recording (its first MAX_DATA_SIM samples) under
         ``p``, or None where it has none (no position, no friction or applied force). Kept while
-        the recording and the inertia stay: the measured friction depends on nothing else, and a
-        slider's redraw simulates only the model along it."""
+        the recording and the inertia stay, which the measured friction hangs on (where the
+        comparison prefers the recording's own inertia reading, it judged that once, under the
+        set drawn first): a slider's redraw simulates only the model along it."""
         from ...identify.data import Recording
         from ...identify.diagnose import comparison_of
 
