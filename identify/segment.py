@@ -502,7 +502,7 @@ def sliding_levels(prep: Prepared, z_range: float) -> Levels:
         mask[a:b] = gross_sliding_mask(x[a:b], vv, th.v_floor, z_range) & steady
     lv = speed_levels(v, prep.friction, mask & prep.usable, th.window)
     keep = lv.friction * lv.velocity > 0
-    return Levels(*(a[keep] for a in (lv.velocity, lv.friction, lv.variance, lv.count)), opposing=int(np.sum(~keep)))
+    return lv.kept(keep, opposing=int(np.sum(~keep)))
 
 
 @njit(cache=True)

@@ -50,9 +50,8 @@ class ParamControl:
         self.apply = apply
         self.value = value  # the model's value the widgets show (a refused entry goes back to it)
         self._quiet = threading.local()
-        label = f"{f.label} ({f.unit})" if f.unit else f.label
-        self.label = label
-        self.text = gui.add_text(label, format_number(value), hint=self._text_hint(f))
+        self.label = self._label(f)
+        self.text = gui.add_text(self.label, format_number(value), hint=self._text_hint(f))
         lo, hi = self._range(value)
         self.slider = gui.add_slider(" ", min=lo, max=hi, step=(hi - lo) / SLIDER_STEPS,
                                      initial_value=self._to_slider(value), marks=self._marks(lo, hi),
@@ -91,9 +90,12 @@ class ParamControl:
         return f"{f.hint}. Type e.g. 0.005, 5e-3 or 0,005.{' Slider: log scale.' if f.scale == 'log' else ''}"
 
     @staticmethod
-    def _slider_hint(f: Field) -> str:
-        label = f"{f.label} ({f.unit})" if f.unit else f.label
-        return f"{label}{' — log scale' if f.scale == 'log' else ''}"
+    def _label(f: Field) -> str:
+        return f"{f.label} ({f.unit})" if f.unit else f.label
+
+    @classmethod
+    def _slider_hint(cls, f: Field) -> str:
+        return f"{cls._label(f)}{' — log scale' if f.scale == 'log' else ''}"
 
     # -- slider coordinates: the value itself, or log10 |value| for a log field
     def _to_slider(self, v: float) -> float:
@@ -151,7 +153,7 @@ class ParamControl:
         slider's range centred on it; ``f``: the field in the new set's units."""
         if f is not None and f.unit != self.field.unit:
             self.field = f
-            self.label = f"{f.label} ({f.unit})" if f.unit else f.label
+            self.label = self._label(f)
             self.text.label = self.label
             # the hints name the units too (they kept the paper's N·m and rad on a slide in N and m)
             self.text.hint = self._text_hint(f)
