@@ -331,10 +331,26 @@ def cmd_fit(args) -> int:
         raise UserError(f"fit: {e}") from None
     print(file=sys.stderr)
     print(res.report())
+    print(_against_friction(recs, res.params))
     with outputs:
         outputs.write_text(args.out, params_to_yaml(res.params.validate()))
     print(f"parameters -> {args.out}")
     return 0
+
+
+def _against_friction(recs, params) -> str:
+    """The fit's report section on its friction gap per recording, as `diagnose` compares it."""
+    from ..identify.diagnose import gap_by_regime
+    from ..identify.errors import FrictionError
+
+    lines = ["[[The model fitted against each recording's friction, compared as `diagnose` compares it]]"]
+    for r in recs:
+        try:
+            lines.append(f"    {r.source}: {gap_by_regime(r, params)}")
+        except FrictionError as e:
+            lines.append(f"    {r.source}: not compared: {e}")
+    lines.append("    (`diagnose --params` with this file tells what the gap is made of)")
+    return "\n".join(lines)
 
 
 def cmd_serve(args) -> int:
@@ -425,6 +441,10 @@ def cmd_samples(args) -> int:
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="leuven-friction", description="Leuven integrated friction model: simulate, fit, explore.")
     sub = ap.add_subparsers(dest="command", required=True)
+    from ..identify.data import columns_help
+
+    # the commands that read a recording say how its columns and units are read
+    reads_files = {"epilog": columns_help(), "formatter_class": argparse.RawDescriptionHelpFormatter}
 
     sv = sub.add_parser("serve", help="start the web explorer (viser)")
     sv.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1)")
@@ -433,7 +453,7 @@ def build_parser() -> argparse.ArgumentParser:
     sv.add_argument("--data", help="a CSV recording to fit at start (or sample:NAME, see `samples`)")
     sv.set_defaults(func=cmd_serve)
 
-    s = sub.add_parser("simulate", help="run a paper experiment or drive the model with a recording")
+    s = sub.add_parser("simulate", help="run a paper experiment or drive the model with a recording", **reads_files)
     s.add_argument("--experiment", help="experiment name (see --list)")
     s.add_argument("--list", action="store_true", help="list the experiments")
     s.add_argument("--model", choices=MODEL_NAMES, help="model kind (default: the file's, else leuven)")
@@ -449,7 +469,7 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", help="output table: CSV, or Parquet for a .parquet name")
     s.set_defaults(func=cmd_simulate)
 
-    f = sub.add_parser("fit", help="fit S(v) and the transition curve to recorded CSV data")
+    f = sub.add_parser("fit", help="fit S(v) and the transition curve to recorded CSV data", **reads_files)
     f.add_argument("data", nargs="+", help="recorded CSV/TSV files (or sample:NAME for a shipped one, see `samples`)")
     f.add_argument("--out", required=True, help="parameter YAML to write")
     f.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau; velocity=- takes no column for a signal")
@@ -465,7 +485,7 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--no-refine", action="store_true", help="skip the output-error refinement")
     f.set_defaults(func=cmd_fit)
 
-    d = sub.add_parser("diagnose", help="find the physical effect the model misses, add it, show the gap shrink")
+    d = sub.add_parser("diagnose", help="find the physical effect the model misses, add it, show the gap shrink", **reads_files)
     d.add_argument("data", help="recorded CSV/TSV (time, position, and friction or applied force), or sample:NAME")
     d.add_argument("--params", help="current model (default: fit the base model to the data first)")
     d.add_argument("--columns", help="column mapping, e.g. time=t,position=q,friction=F; velocity=- takes no column for a signal")

@@ -14,11 +14,14 @@ import io
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from .errors import DataError
+
+if TYPE_CHECKING:  # pandas is imported where tables are read (see ``numbers_of``)
+    import pandas as pd
 
 SIGNALS = ("time", "position", "force", "velocity", "friction", "normal_load", "temperature")
 
@@ -88,6 +91,24 @@ UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm, in, mil, ft; rad, mrad, urad, 
                   "quotients for a speed (mm/s, in/s, deg/s, rad/s); °C, K")
 
 
+def columns_help() -> str:
+    """How a file's columns are recognised and its units read, for a command's --help (from
+    ALIASES and UNITS_ACCEPTED: what the reader does, said once)."""
+    import textwrap
+
+    def para(text, indent=""):
+        return textwrap.fill(text, 78, initial_indent=indent, subsequent_indent=indent + "  ")
+
+    return "\n".join(
+        [para("columns are recognised by their header names (any case; for time, position, force and friction "
+              "a word of a longer name too: tau_motor, x_mm), unless --columns names them:")]
+        + [para(f"{sig}: {', '.join(ALIASES[sig])}", "  ") for sig in ALIASES]
+        + [para("a name that reads as a reference, command, model or estimate (q_ref, pos_cmd, friction_model) "
+                "is not taken."),
+           para("units: in brackets after the name ('pos [mm]', 'time [ms]') or as its last word (x_mm); a "
+                "header without one is read as SI. Known: " + UNITS_ACCEPTED + ".")])
+
+
 def _single(word: str) -> tuple[float, str] | None:
     """A unit written as one word: UNITS, or a force and a length run together (Nmm, mNm, kNm)."""
     if word in UNITS:
@@ -132,6 +153,17 @@ def unit_of(unit: str, sig: str) -> tuple[float, str] | None:
 def _fits(unit: str | None, sig: str) -> bool:
     u = unit_of(unit, sig) if unit is not None else None
     return u is not None and u[1] in SI_OF[sig]
+
+
+def _reads_as_not_measured(key: str, sig: str) -> str:
+    """What a header name's words say a column of signal ``sig`` is if not a measurement ("a
+    reference (ref)", "a command (cmd)" of a motion; a commanded force is the one applied), or ""."""
+    for w in (w for w in key.split("_") if w):
+        if w in _COMMANDED and sig in ("position", "velocity"):
+            return f"a command ({w})"
+        if w in _NOT_MEASURED:
+            return f"a reference, model or estimate ({w})"
+    return ""
 
 
 def recognise(key: str, unit: str | None = None) -> list:
@@ -274,6 +306,8 @@ def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
     comma, a column that holds a word somewhere is read as text with its numbers' commas in
     place: they are read as decimal marks here, so the message names the word, not the first
     number (which "0,5" would otherwise be)."""
+    import pandas as pd  # (here, not at import: `--help` reads this module's names, not its tables)
+
     if decimal != "." and not pd.api.types.is_numeric_dtype(raw.dtype):
         raw = raw.map(lambda c: c.replace(decimal, ".") if isinstance(c, str) else c)
     return pd.to_numeric(raw, errors="coerce").to_numpy(dtype=np.float64)
@@ -282,6 +316,8 @@ def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
 def _read_table(path: Path, text: str) -> pd.DataFrame:
     """Guess the separator from the header (the first line that is not a ``#`` comment):
     tab, semicolon (European CSV: then a comma is the decimal mark), comma, or whitespace."""
+    import pandas as pd
+
     from .io import sniff  # the one guess, shared with the reader of files
 
     sep, decimal = sniff(text.splitlines())
@@ -441,6 +477,14 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     if unitless:
         rec.units_assumed = _assume_si(rec, unitless)
         notes.append(rec.units_assumed)
+    for sig, col in (columns or {}).items():
+        if col is not None and sig in ("position", "force", "friction", "velocity") and (
+                said := _reads_as_not_measured(headers[mapping[sig]][0], sig)):
+            # taken as asked; said, as a reference or a command moves as it was told to, not as
+            # the machine did (a feed axis's reference position read as the position: no noise at
+            # all, a transition curve to 10⁻⁴ N, and its refinement running off)
+            notes.append(f"{mapping[sig]}: taken as {sig} as asked, though its name reads as {said}, not a "
+                         f"measurement; friction is read from what the machine did")
     ignored = [c for c in in_file if c not in mapping.values()]
     rec.ignored = ignored
     rec.ambiguous = ambiguous

@@ -2273,6 +2273,12 @@ class Diagnosis:
         # steps: [model as given, base refit, + first effect, + second effect, …]
         return self.steps[2]["params"] if self.effects else None
 
+    def named_labels(self) -> list:
+        """The effects named, each with the way it acts as written ("cyclic_softening
+        (hardening)", ``Effect.sense_of``)."""
+        written = {e["name"]: e["params"] for e in self.written_effects()}
+        return [f"{n} ({w})" if (w := EFFECTS[n].sense_of(written.get(n, {}))) else n for n in self.effects]
+
     def written_effects(self) -> list:
         """[{name, params, sd}] of every effect in the model written, as the file has them: the
         last step's model, every effect refitted together — with two effects the first one's
@@ -2306,7 +2312,7 @@ class Diagnosis:
         u = self.params_before.units.get("force" if self.space == "friction" else "position", "")
         L = []
         if self.effects:
-            L.append("Missing effects named (out-of-sample evidence): " + ", ".join(self.effects))
+            L.append("Missing effects named (out-of-sample evidence): " + ", ".join(self.named_labels()))
         elif self.confounded:
             L.append("No missing effect named: what improves the held-out prediction is explained as well by two "
                      "candidates confounded with each other (below).")
@@ -2700,21 +2706,11 @@ def bake(params: FrictionParams, g: float, k0: float) -> FrictionParams:
     return params.replace(**kw)
 
 
-@one_blas_thread
-def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings: Settings | None = None) -> Diagnosis:
-    """Run the workflow on one recording with the current model ``params``."""
-    s = settings or Settings()
-    started = perf_counter()
-    say = progress or (lambda frac, msg: None)
-    say(0.01, "choosing where to compare")
-    lacking = [e["name"] for e in params.effects if e["name"] in EFFECTS and "load" in EFFECTS[e["name"]].needs]
-    if lacking and rec.normal_load is None:
-        # (a set diagnosed on a recording with a load column, then used on one without)
-        raise DataError(f"{rec.source}: the model carries {lacking[0]}, which needs a normal-load column, and the "
-                        f"recording has none: diagnose it with a model without that effect (fit this recording "
-                        f"first), or give the load (--columns normal_load=<column>)")
+def scored_comparison(rec: Recording, params: FrictionParams, s: Settings) -> Comparison:
+    """The comparison a diagnosis of ``rec`` with ``params`` makes, with the samples it scores
+    (``Comparison.scored``: the start whose memory the log does not show, and rests the sensor
+    does not resolve, left out) and its noise floor settled there; its choices in its notes."""
     cmp_ = comparison_of(rec, params, s.space, dict(s.reading))
-    base_params = params.replace(effects=())
     cmp_.z_presliding = presliding_range(params)
     stroke = median_stroke(cmp_)
     # a transition curve identified on presliding data (uncertainties given) is trusted: the
@@ -2770,6 +2766,27 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                               f"in what is left: a finer position sensor would tell")
     cmp_.scored = allm
     settle_noise_floor(cmp_, allm)
+    return cmp_
+
+
+@one_blas_thread
+def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings: Settings | None = None) -> Diagnosis:
+    """Run the workflow on one recording with the current model ``params``."""
+    s = settings or Settings()
+    started = perf_counter()
+    say = progress or (lambda frac, msg: None)
+    say(0.01, "choosing where to compare")
+    lacking = [e["name"] for e in params.effects if e["name"] in EFFECTS and "load" in EFFECTS[e["name"]].needs]
+    if lacking and rec.normal_load is None:
+        # (a set diagnosed on a recording with a load column, then used on one without)
+        raise DataError(f"{rec.source}: the model carries {lacking[0]}, which needs a normal-load column, and the "
+                        f"recording has none: diagnose it with a model without that effect (fit this recording "
+                        f"first), or give the load (--columns normal_load=<column>)")
+    cmp_ = scored_comparison(rec, params, s)
+    base_params = params.replace(effects=())
+    meas = cmp_.measured
+    n = len(meas)
+    allm = cmp_.scored
     engine = Engine(base_params, cmp_, s.free_steady)
     # the model as given, its own effects included
     prior0 = [dict(e) for e in params.effects]
@@ -3438,6 +3455,24 @@ class FrictionCompared:
     @property
     def rms(self) -> float:
         return _rms(self.measured - self.model)
+
+
+def gap_by_regime(rec: Recording, params: FrictionParams) -> str:
+    """How far ``params`` leaves the recording's friction, compared as a diagnosis compares the
+    model as given (``scored_comparison``, ``friction_compared``, beside ``model_nuisance``),
+    overall against the noise floor and per regime, in words: what a fit says of itself in
+    friction, whatever its own cost was (a feed axis made apart was refined to 0.4 µm of
+    position while its presliding friction stood 9 N off, which only `diagnose` then said)."""
+    cmp_ = scored_comparison(rec, params, Settings())
+    m = cmp_.scored
+    r = cmp_.measured - friction_compared(rec, params, cmp_).model
+    r = r - model_nuisance(r, m, cmp_.memory_offset, cmp_.acceleration).correction
+    unit = params.units.get("force", "")
+    parts = [f"{k} {_rms(r[w & m]):.3g}" for k, w in regime_masks(cmp_).items() if k != "all" and (w & m).any()]
+    total = _rms(r[m])
+    return (f"RMS {total:.3g} {unit}" + (f" ({total / cmp_.noise:.1f} × the noise floor {cmp_.noise:.3g})"
+                                         if cmp_.noise > 0 else "")
+            + f"; {', '.join(parts)} (from {float(cmp_.time[np.argmax(m)]):.4g} s on)")
 
 
 def friction_compared(rec: Recording, params: FrictionParams, cmp_: Comparison | None = None) -> FrictionCompared:

@@ -100,9 +100,18 @@ def misfit_in_time(levels: Levels, fit, sign: int) -> str:
             + "; `diagnose` tests a drift in time")
 
 
-def left_out(levels: Levels) -> str:
+def left_out(levels: Levels, unit: str = "") -> str:
     """The runs of steady velocity the segmentation did not take as levels, in words ("" if none)."""
     parts = []
+    if levels.trending:
+        # said with their speeds: where they are a sweep's slow end, S(v)'s Stribeck part goes
+        # with them (a feed axis made apart, a 5 mm ripple along its screw: 11 of 24 runs, all
+        # the slow ones, and F_s held at F_c with no word of why)
+        sp = np.abs(np.asarray(levels.trending))
+        lo, hi = f"{sp.min():.3g}", f"{sp.max():.3g}"
+        parts.append(f"{len(sp)} run(s) whose friction trends within the run (its halves differ by over 4 σ: a "
+                     f"ripple along the travel, a drift, a load changing, or a run too short to settle), at "
+                     f"|v| {lo if lo == hi else f'{lo}–{hi}'}{' ' + unit + '/s' if unit else ''}")
     if levels.opposing:
         parts.append(f"{levels.opposing} run(s) whose friction opposes their velocity (a presliding spring giving "
                      f"back, not sliding)")
@@ -214,7 +223,7 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
                 f"{distinct_speeds(levels.velocity[mine_s])} distinct speed(s))")
 
     words = " and ".join(held_at(s) for s in taken)
-    return (Levels(*arrays, opposing=levels.opposing, creep=levels.creep),
+    return (Levels(*arrays, opposing=levels.opposing, creep=levels.creep, trending=levels.trending),
             f"{words}: S(v) from {int(new.sum())} speed level(s) of steady gross sliding instead (past "
             f"{GROSS_SLIDING:g} × {z_range:.3g} of travel after each reversal, the median range over which the "
             f"friction crossed to sliding; the velocity changing by under 5 % over that range; binned in log|v|)")
@@ -410,7 +419,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         hint = sign_hint(pr, lv)
         notes.append(f"{pr.source}: {len(lv.velocity)} constant-velocity level(s) "
                      f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)"
-                     + left_out(lv) + (f"; {hint}" if hint else ""))
+                     + left_out(lv, pr.rec.units.get("position", "")) + (f"; {hint}" if hint else ""))
         lv, filled = with_sliding_levels(pr, lv)
         if filled:
             notes.append(f"{pr.source}: {filled}")

@@ -32,13 +32,14 @@ class Levels:
     count: np.ndarray
     opposing: int = 0  # runs whose friction opposes their velocity (``segment.constant_velocity_levels``)
     creep: int = 0  # runs of presliding creep (``segment.sliding_only``)
+    trending: tuple = ()  # the speeds of runs whose friction trends within them (``segment.constant_velocity_levels``)
     time: np.ndarray | None = None  # each level's mean time (one recording's clock), where known
 
     def kept(self, keep: np.ndarray, **kw) -> "Levels":
-        """The levels ``keep`` selects, with their times; ``kw`` sets ``opposing``/``creep``."""
+        """The levels ``keep`` selects, with their times; ``kw`` sets ``opposing``/``creep``/``trending``."""
         return Levels(*(a[keep] for a in (self.velocity, self.friction, self.variance, self.count)),
                       time=None if self.time is None else self.time[keep],
-                      **{"opposing": self.opposing, "creep": self.creep, **kw})
+                      **{"opposing": self.opposing, "creep": self.creep, "trending": self.trending, **kw})
 
 
 @dataclass

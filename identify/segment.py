@@ -79,6 +79,15 @@ def noise_sd(noise) -> float:
     return noise.step / np.sqrt(12.0) if isinstance(noise, Quantized) else noise.sigma
 
 
+# a position whose noise is under this fraction of its travel shows none: the finest linear
+# scales and encoders resolve about 10⁻⁷ of their travel, a number written with its digits 10⁻⁹
+NOISELESS = 1e-8
+
+
+def _listing_short(cols: list) -> str:
+    return ", ".join(cols[:6]) + (f" and {len(cols) - 6} more" if len(cols) > 6 else "")
+
+
 MIN_PLATEAU_SHARE = 0.5  # a normal-load plateau holding less of the recording is not where to fit
 
 
@@ -281,6 +290,12 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
     th.x_turn = max(6.0 * th.x_noise, 2.0 * getattr(noise, "step", 0.0))
     usable = np.ones(n, dtype=bool)
     notes = []
+    travel = float(np.ptp(x))
+    if travel > 0 and th.x_noise < NOISELESS * travel:
+        notes.append(f"the position shows no measurement noise (x_noise {th.x_noise:.3g} over a travel of "
+                     f"{travel:.3g}): a simulated or commanded position; a measured one is what the friction "
+                     f"acted on (name it with --columns position=<column>)"
+                     + (f"; not read: {_listing_short(rec.ignored)}" if rec.ignored else ""))
     if rec.normal_load is not None:
         N = rec.normal_load
         N0 = float(np.quantile(N, 0.95))
@@ -341,7 +356,7 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     v, x, t = prep.velocity, rec.position, rec.time
     w = max(th.window, 5)
     out = ([], [], [], [], [])
-    opposing = 0
+    opposing, trending = 0, []
     for a, b in prep.chunks:
         vv = v[a:b]
         steady = (np.abs(vv) > th.v_floor) & prep.usable[a:b]
@@ -373,6 +388,7 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
             h = len(f) // 2
             se = np.sqrt(_batch_var_of_mean(f[:h], 4) + _batch_var_of_mean(f[h:], 4))
             if abs(np.mean(f[:h]) - np.mean(f[h:])) > 4 * se:
+                trending.append(float(vel))
                 continue
             out[0].append(float(vel))
             out[1].append(float(np.mean(f)))
@@ -380,7 +396,7 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
             out[3].append(e - s)
             out[4].append(float(np.mean(t[s:e])))
     return sliding_only(Levels(*(np.array(o, dtype=float) for o in out[:4]), opposing=opposing,
-                               time=np.array(out[4], dtype=float)))
+                               trending=tuple(trending), time=np.array(out[4], dtype=float)))
 
 
 CREEP_FRICTION = 0.6  # creep holds less than this fraction of its direction's median level friction,

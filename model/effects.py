@@ -185,10 +185,21 @@ class Effect:
     factor: Callable[[Mapping[str, float], Context], np.ndarray] = field(repr=False)
     separated_by: str = ""  # the experiment that isolates this effect from others
     neutral: Mapping[str, float] = field(default_factory=dict)  # values of its amplitudes at which it does nothing
+    # (amplitude, word below neutral, word above): which way a signed effect acts, said beside its
+    # name — a contact that stiffens is a "cyclic_softening" with h > 0, which reads wrong alone
+    sense: tuple[str, str, str] | None = None
 
     @property
     def param_names(self) -> tuple[str, ...]:
         return tuple(p.name for p in self.params)
+
+    def sense_of(self, values: Mapping[str, float]) -> str:
+        """Which way the effect acts at ``values`` ("hardening", "falling"), or ""."""
+        if self.sense is None or self.sense[0] not in values:
+            return ""
+        name, below, above = self.sense
+        x, at = values[name], self.neutral.get(name, 0.0)
+        return below if x < at else above if x > at else ""
 
     def scale(self, values: Mapping[str, float], ctx: Context) -> np.ndarray:
         """The factor along the context's motion (read-only). One that does not follow the
@@ -324,7 +335,7 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
             EffectParam("tau", "time", 0.0, 1e12, "time constant of the approach", lo_open=True, shape_of=("b",)),
             EffectParam("t0", "time", -1e12, 1e12, "start of the approach")),
            ("time",), _drift, "repeat one test at fixed load and position after the machine has warmed up",
-           {"b": 0.0}),
+           {"b": 0.0}, ("b", "friction falling", "friction rising")),
     Effect("normal_load", "friction scales with the normal load as (N/N0)^α", "friction",
            (EffectParam("alpha", "1", 0.0, 3.0, "load exponent (1: Coulomb's law)"),
             EffectParam("N0", "load", 0.0, 1e12, "reference load at which the base model holds", lo_open=True)),
@@ -349,7 +360,7 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
                         shape_of=("h",)),
             EffectParam("min_excursion", "position", 0.0, 1e12, "smallest back-travel counted as a reversal")),
            ("reversals",), _softening, "alternate presliding cycles with long rests (time) at a fixed load",
-           {"h": 0.0}),
+           {"h": 0.0}, ("h", "softening", "hardening")),
     Effect("rate_stiffness", "the presliding spring's stiffness varies smoothly with the sliding speed, "
            "κ = exp(c1·ℓ + c2·ℓ²) with ℓ = ln(|v|/v_ref)", "stiffness",
            (EffectParam("c1", "1", -2.0, 2.0, "slope of ln κ against ln|v|"),

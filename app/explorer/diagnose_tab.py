@@ -160,7 +160,7 @@ def status_line(d) -> str:
     seen but not named, or that nothing is."""
     others = d.not_named()
     if d.effects:
-        return f"Found **{', '.join(d.effects)}**: see the proposal." + (f" Also: {'; '.join(others)}." if others else "")
+        return f"Found **{', '.join(d.named_labels())}**: see the proposal." + (f" Also: {'; '.join(others)}." if others else "")
     gap = (f"the model leaves {d.rms_before:.3g}, {d.rms_before / d.noise:.1f} × the noise floor" if d.noise > 0
            else f"the model leaves {d.rms_before:.3g}")
     base = (f"; the base, not a missing effect, is what is off (refitted alone it leaves {d.rms_base_refit:.3g}): "

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from leuven_friction.app.cli import main
-from leuven_friction.identify.diagnose import diagnose
+from leuven_friction.identify.diagnose import diagnose, gap_by_regime
 from leuven_friction.model.effects import EFFECTS
 from synth.hidden import make_case, oracle_params, to_recording
 
@@ -30,10 +30,15 @@ def test_tribometer_load_ramped_while_sticking_names_normal_load():
 def test_clean_recording_names_nothing_and_keeps_the_model(tmp_path):
     df, truth, case = make_case("tribometer", 4243, ())
     base = oracle_params(truth)
-    d = diagnose(to_recording(df, "clean.csv"), base)
+    rec = to_recording(df, "clean.csv")
+    d = diagnose(rec, base)
     assert d.effects == [] and d.params_after is base, d.text()
     # the gap stated after is the file's that is written — the one given — not the alternative's
     assert d.rms_after == d.steps[0]["rms"] and np.array_equal(d.model_after, d.model_before)
+    # what `fit` reports of a model's friction gap is the gap the diagnosis starts from
+    said = gap_by_regime(rec, base)
+    assert said.startswith(f"RMS {d.rms_before:.3g} ") and f"× the noise floor {d.noise:.3g}" in said, (said, d.text())
+    assert f"presliding {d.regimes['presliding']['rms_before']:.3g}," in said
 
 
 def test_the_work_reported_counts_every_simulation_and_its_time(monkeypatch):

@@ -325,3 +325,16 @@ def test_a_factor_asked_for_again_follows_its_new_values():
     for c1 in (0.2, -0.1, 0.2):
         got = EFFECTS["rate_stiffness"].scale({"c1": c1, "c2": 0.0, "v_ref": 0.01, "v_floor": 1e-4}, ctx)
         np.testing.assert_allclose(got, (np.maximum(np.abs(ctx.velocity), 1e-4) / 0.01) ** c1, rtol=1e-12)
+
+
+@pytest.mark.parametrize("name,values,word", [
+    ("cyclic_softening", {"h": 0.43, "n_c": 3.0, "min_excursion": 1e-6}, "hardening"),
+    ("cyclic_softening", {"h": -0.3, "n_c": 3.0, "min_excursion": 1e-6}, "softening"),
+    ("time_drift", {"b": -0.2, "tau": 40.0, "t0": 0.0}, "friction falling"),
+    ("time_drift", {"b": 0.0, "tau": 40.0, "t0": 0.0}, ""),
+    ("position_ripple", {"a": 0.1, "wavelength": 5e-3, "phase": 0.0}, ""),
+])
+def test_a_signed_effect_says_which_way_it_acts(name, values, word):
+    # a contact that stiffens with its reversals is named cyclic_softening with h > 0: the
+    # report says "hardening" beside the name rather than leave it to the sign
+    assert EFFECTS[name].sense_of(values) == word

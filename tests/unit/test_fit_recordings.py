@@ -543,3 +543,31 @@ def test_the_starting_sets_effects_are_not_carried_into_a_fit():
     assert res.params.effects == ()
     assert any("effects (normal_load) are not carried" in n for n in res.notes), res.notes
     assert diagnose(rec, res.params).params_before.effects == ()
+
+
+def test_runs_whose_friction_trends_are_counted_with_their_speeds_and_said():
+    # a constant-velocity run whose friction climbs along it (a ripple seen over part of its
+    # period, a warm-up) is no point of S(v); it is left out, and the note says how many and at
+    # what speeds, so that a sweep's slow end lost that way is seen (a feed axis made apart lost
+    # its 11 slow runs and with them the Stribeck part, with no word)
+    from leuven_friction.identify.fit import left_out
+    from leuven_friction.identify.segment import constant_velocity_levels, prepare
+
+    rng = np.random.default_rng(4)
+    dt, t, x, f = 1e-3, [0.0], [0.0], [0.0]
+    speeds = (1e-3, 2e-3, 5e-3, 1e-2, 2e-2, -1e-3, -2e-3, -5e-3, -1e-2, -2e-2)
+    for v in speeds:
+        for k in range(2500):  # a rest, then the run
+            moving = k >= 500
+            x.append(x[-1] + (v * dt if moving else 0.0))
+            t.append(t[-1] + dt)
+            trend = 4.0 * (k - 500) / 2000 if (moving and v == 2e-3) else 0.0  # 4 N over the run
+            f.append((np.sign(v) * (10.0 + 200.0 * abs(v)) + trend if moving else 0.0) + 0.05 * rng.standard_normal())
+    df = __import__("pandas").DataFrame({"time [s]": t, "position [m]": x, "friction [N]": f})
+    prep = prepare(_rec(df, "trend.csv"))
+    levels = constant_velocity_levels(prep)
+    assert len(levels.trending) == 1 and levels.trending[0] == pytest.approx(2e-3, rel=0.02)
+    assert not np.any(np.isclose(levels.velocity, 2e-3, rtol=0.05))
+    assert len(levels.velocity) == len(speeds) - 1
+    said = left_out(levels, "m")
+    assert "1 run(s) whose friction trends within the run" in said and "at |v| 0.002 m/s" in said

@@ -381,3 +381,45 @@ def test_a_bad_cell_is_named_by_the_line_an_editor_shows(tmp_path, as_upload):
     back = rows[:100] + [""] + [rows[120]] + rows[101:]
     with pytest.raises(DataError, match=r"row 106: time 101.5 does not increase \(previous 120.5\)"):
         load("back.csv", back)
+
+
+def _axis_file(tmp_path):
+    # a feed axis as its logger writes it: the reference position beside the measured one
+    rng = np.random.default_rng(3)
+    t = np.arange(4000) * 1e-3
+    # mm: strokes at 7.31 mm/s, one a second, with 50 ms ramps of constant acceleration
+    v = 7.31 * np.sign(np.sin(np.pi * (t + 0.5e-3))) * np.minimum(1.0, np.minimum(t % 1.0, 1.0 - t % 1.0) / 0.05)
+    ref = np.cumsum(v) * 1e-3
+    pos = np.round((ref + 0.003 * rng.standard_normal(t.size)) / 2e-4) * 2e-4
+    force = 45.0 * np.tanh(np.gradient(ref, t) / 2.0) + 0.3 * rng.standard_normal(t.size)
+    p = tmp_path / "axis.csv"
+    p.write_text("time [ms],pos_ref [mm],pos [mm],force_cmd [N]\n"
+                 + "".join(f"{a * 1e3:.1f},{b:.6f},{c:.4f},{d:.4f}\n" for a, b, c, d in zip(t, ref, pos, force)))
+    return p
+
+
+def test_a_reference_named_as_the_position_is_taken_and_said_a_commanded_force_is_not(tmp_path):
+    p = _axis_file(tmp_path)
+    rec = load_recording(p, columns={"position": "pos_ref"})
+    assert rec.columns["position"] == "pos_ref [mm]"
+    assert any("pos_ref [mm]: taken as position as asked, though its name reads as a reference" in n for n in rec.notes)
+    rec = load_recording(p, columns={"force": "force_cmd"})  # a commanded force is the one applied
+    assert not any("as asked" in n for n in rec.notes)
+
+
+def test_a_position_without_noise_is_said_to_be_no_measurement_naming_the_columns_not_read(tmp_path):
+    from leuven_friction.identify.segment import prepare
+
+    p = _axis_file(tmp_path)
+    said = [n for n in prepare(load_recording(p, columns={"position": "pos_ref"})).notes if "no measurement noise" in n]
+    assert len(said) == 1 and "not read: pos [mm]" in said[0]
+    assert not [n for n in prepare(load_recording(p)).notes if "no measurement noise" in n]
+
+
+def test_help_of_a_command_that_reads_a_recording_says_how_columns_and_units_are_read(capsys):
+    from leuven_friction.app.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["fit", "--help"])
+    out = capsys.readouterr().out
+    assert "friction_torque" in out and "'pos [mm]'" in out and "lbf" in out and "q_ref" in out
