@@ -67,7 +67,7 @@ def _merge_levels(parts: list[Levels]) -> Levels:
     if len(parts) == 1:
         return parts[0]
     # (the levels' times are each recording's own clock: not kept across recordings)
-    return Levels(*(np.concatenate([getattr(p, k) for p in parts]) for k in ("velocity", "friction", "variance", "count")))
+    return dataclasses.replace(Levels.joined(parts), time=None)
 
 
 TREND_P = 0.01  # the levels' residuals follow their time at this significance (Spearman): said in the notes
@@ -101,23 +101,25 @@ def misfit_in_time(levels: Levels, fit, sign: int) -> str:
 
 
 def left_out(levels: Levels, unit: str = "") -> str:
-    """The runs of steady velocity the segmentation did not take as levels, in words ("" if none)."""
-    parts = []
-    if levels.trending:
-        # said with their speeds: where they are a sweep's slow end, S(v)'s Stribeck part goes
-        # with them (a feed axis made apart, a 5 mm ripple along its screw: 11 of 24 runs, all
-        # the slow ones, and F_s held at F_c with no word of why)
-        sp = np.abs(np.asarray(levels.trending))
-        lo, hi = f"{sp.min():.3g}", f"{sp.max():.3g}"
-        parts.append(f"{len(sp)} run(s) whose friction trends within the run (its halves differ by over 4 σ: a "
-                     f"ripple along the travel, a drift, a load changing, or a run too short to settle), at "
-                     f"|v| {lo if lo == hi else f'{lo}–{hi}'}{' ' + unit + '/s' if unit else ''}")
+    """The runs of steady velocity the segmentation did not take as settled levels, in words ("" if none)."""
+    parts, said = [], ""
     if levels.opposing:
         parts.append(f"{levels.opposing} run(s) whose friction opposes their velocity (a presliding spring giving "
                      f"back, not sliding)")
     if levels.creep:
         parts.append(f"{levels.creep} run(s) of creep (weak or short beside the other levels: segment.sliding_only)")
-    return "; left out: " + " and ".join(parts) if parts else ""
+    if parts:
+        said = "; left out: " + " and ".join(parts)
+    if levels.trended is not None:
+        # said with their speeds: where they are a sweep's slow end, S(v)'s Stribeck part rests
+        # on them (``segment.constant_velocity_levels``)
+        sp = np.abs(levels.velocity[levels.trended])
+        lo, hi = f"{sp.min():.3g}", f"{sp.max():.3g}"
+        said += (f"; {len(sp)} of them run(s) whose friction trends within the run (its halves differ by over 4 σ "
+                 f"while the speed held: a ripple along the travel, a drift, a load changing), at |v| "
+                 f"{lo if lo == hi else f'{lo}–{hi}'}{' ' + unit + '/s' if unit else ''}: points of S(v) with half "
+                 f"that change in their σ, not steady speeds")
+    return said
 
 
 def sign_hint(prep: Prepared, levels: Levels) -> str:
@@ -136,7 +138,8 @@ MIN_RANGE_BRANCHES = 3  # reversals whose crossings bound the presliding range f
 
 def _speeds_per_side(levels: Levels) -> tuple[int, int]:
     """Distinct speeds of the constant-velocity levels, (positive, negative)."""
-    return tuple(distinct_speeds(levels.velocity[levels.velocity * s > 0]) for s in (1.0, -1.0))
+    v = levels.steady().velocity
+    return tuple(distinct_speeds(v[v * s > 0]) for s in (1.0, -1.0))
 
 
 def has_speed_sweep(levels: Levels) -> bool:
@@ -216,6 +219,7 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     new = np.isin(np.sign(extra.velocity), taken)
     arrays = (np.concatenate([getattr(levels, k)[~mine], getattr(extra, k)[new]])
               for k in ("velocity", "friction", "variance", "count"))
+    trended = np.concatenate([levels.is_trended[~mine], np.zeros(int(new.sum()), bool)])
 
     def held_at(s):
         mine_s = levels.velocity * s > 0
@@ -223,7 +227,7 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
                 f"{distinct_speeds(levels.velocity[mine_s])} distinct speed(s))")
 
     words = " and ".join(held_at(s) for s in taken)
-    return (Levels(*arrays, opposing=levels.opposing, creep=levels.creep, trending=levels.trending),
+    return (Levels(*arrays, opposing=levels.opposing, creep=levels.creep, trended=trended if trended.any() else None),
             f"{words}: S(v) from {int(new.sum())} speed level(s) of steady gross sliding instead (past "
             f"{GROSS_SLIDING:g} × {z_range:.3g} of travel after each reversal, the median range over which the "
             f"friction crossed to sliding; the velocity changing by under 5 % over that range; binned in log|v|)")
@@ -460,7 +464,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     say(0.4, "finding presliding branches")
     datasets = []
     short = []  # (crossing range, resolution) of recordings whose reversals resolve no presliding
-    slow = np.min(np.abs(levels.velocity)) if len(levels.velocity) else np.inf
+    steady = levels.steady().velocity
+    slow = np.min(np.abs(steady)) if len(steady) else np.inf
     for pr, sweep in zip(preps, swept):
         # presliding ends where gross sliding begins: below the slowest level; without levels
         # only the 97 % of D cut (F_s from the starting file) bounds the branches

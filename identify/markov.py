@@ -32,14 +32,36 @@ class Levels:
     count: np.ndarray
     opposing: int = 0  # runs whose friction opposes their velocity (``segment.constant_velocity_levels``)
     creep: int = 0  # runs of presliding creep (``segment.sliding_only``)
-    trending: tuple = ()  # the speeds of runs whose friction trends within them (``segment.constant_velocity_levels``)
     time: np.ndarray | None = None  # each level's mean time (one recording's clock), where known
+    # per level: its run's friction trended (``segment.constant_velocity_levels``), and its
+    # variance holds that trend; None where none did
+    trended: np.ndarray | None = None
 
     def kept(self, keep: np.ndarray, **kw) -> "Levels":
-        """The levels ``keep`` selects, with their times; ``kw`` sets ``opposing``/``creep``/``trending``."""
+        """The levels ``keep`` selects, with their times and marks; ``kw`` sets ``opposing``/``creep``."""
         return Levels(*(a[keep] for a in (self.velocity, self.friction, self.variance, self.count)),
                       time=None if self.time is None else self.time[keep],
-                      **{"opposing": self.opposing, "creep": self.creep, "trending": self.trending, **kw})
+                      trended=None if self.trended is None or not self.trended[keep].any() else self.trended[keep],
+                      **{"opposing": self.opposing, "creep": self.creep, **kw})
+
+    @property
+    def is_trended(self) -> np.ndarray:
+        return np.zeros(len(self.velocity), bool) if self.trended is None else self.trended
+
+    def steady(self) -> "Levels":
+        """The levels whose friction settled: the steady speeds that end presliding branches,
+        count a sweep's speeds and scale σ1 (a trended run is a point of S(v) alone)."""
+        return self if self.trended is None else self.kept(~self.trended)
+
+    @classmethod
+    def joined(cls, parts: list) -> "Levels":
+        """Levels of several sets together (times only where every part has them), their
+        runs left out summed."""
+        arrays = (np.concatenate([getattr(p, k) for p in parts]) for k in ("velocity", "friction", "variance", "count"))
+        marks = [p.is_trended for p in parts]
+        return cls(*arrays, opposing=sum(p.opposing for p in parts), creep=sum(p.creep for p in parts),
+                   time=None if any(p.time is None for p in parts) else np.concatenate([p.time for p in parts]),
+                   trended=np.concatenate(marks) if any(m.any() for m in marks) else None)
 
 
 @dataclass

@@ -356,7 +356,8 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     v, x, t = prep.velocity, rec.position, rec.time
     w = max(th.window, 5)
     out = ([], [], [], [], [])
-    opposing, trending = 0, []
+    trend = ([], [], [], [], [])
+    opposing = 0
     for a, b in prep.chunks:
         vv = v[a:b]
         steady = (np.abs(vv) > th.v_floor) & prep.usable[a:b]
@@ -387,16 +388,48 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
                 continue
             h = len(f) // 2
             se = np.sqrt(_batch_var_of_mean(f[:h], 4) + _batch_var_of_mean(f[h:], 4))
-            if abs(np.mean(f[:h]) - np.mean(f[h:])) > 4 * se:
-                trending.append(float(vel))
-                continue
-            out[0].append(float(vel))
-            out[1].append(float(np.mean(f)))
-            out[2].append(_batch_var_of_mean(f))
-            out[3].append(e - s)
-            out[4].append(float(np.mean(t[s:e])))
-    return sliding_only(Levels(*(np.array(o, dtype=float) for o in out[:4]), opposing=opposing,
-                               trending=tuple(trending), time=np.array(out[4], dtype=float)))
+            step = np.mean(f[h:]) - np.mean(f[:h])
+            # a run whose friction still trends (its halves over 4σ apart) has not settled to one
+            # value of S(v): a ripple along its travel, a drift in time, a load moving. It is kept
+            # as a point of S(v) with half that step in its σ, where its mean may lie off the
+            # curve, so that a sweep's slow end lost that way does not take the Stribeck part with
+            # it (a feed axis made apart, a 5 mm ripple along its screw: 11 of 24 runs, all the
+            # slow ones, and F_s held at F_c); it ends no presliding branch (``Levels.steady``).
+            # Only where the speed held: its relative change TREND_NOT_SPEED times under the
+            # friction's (S(v)'s slope in log-log seldom reaches 1), else the speed made the trend
+            trended = abs(step) > 4 * se
+            speed_step = abs(np.mean(vk[h:]) - np.mean(vk[:h])) / abs(vel)
+            if trended and abs(step) <= TREND_NOT_SPEED * speed_step * abs(np.mean(f)):
+                continue  # the speed moved with it: no steady run (a creep, a stroke of a sinusoidal force)
+            dest = trend if trended else out
+            dest[0].append(float(vel))
+            dest[1].append(float(np.mean(f)))
+            dest[2].append(_batch_var_of_mean(f) + (0.25 * step * step if trended else 0.0))
+            dest[3].append(e - s)
+            dest[4].append(float(np.mean(t[s:e])))
+
+    def levels(o, **kw):
+        return Levels(*(np.array(a, dtype=float) for a in o[:4]), time=np.array(o[4], dtype=float), **kw)
+
+    runs = levels(out, opposing=opposing)
+    if not trend[0]:
+        return sliding_only(runs)
+    runs = sliding_only(Levels.joined([runs, levels(trend, trended=np.ones(len(trend[0]), bool))]))
+    # trending runs add to a sweep, they make none: on a side with fewer than three settled
+    # levels (where creep is not told either, ``sliding_only``) they are left out (a robot
+    # joint swept one way only: its one slow return, creeping under a torque ramp, read 7.4
+    # N·m for an F_s of 14.9)
+    keep = np.ones(len(runs.velocity), bool)
+    for sign in (1.0, -1.0):
+        side = runs.velocity * sign > 0
+        if np.sum(side & ~runs.is_trended) < TREND_BESIDE:
+            keep &= ~(side & runs.is_trended)
+    return runs if keep.all() else runs.kept(keep)
+
+
+# a trending run is a point of S(v) if its friction moved (relative) this many times more than its speed
+TREND_NOT_SPEED = 10.0
+TREND_BESIDE = 3  # … and if its side has this many settled levels
 
 
 CREEP_FRICTION = 0.6  # creep holds less than this fraction of its direction's median level friction,

@@ -3,6 +3,8 @@ friction, its own integrator, other units, sensors and sign conventions): parame
 the generator's truth, held parameters named, scale and time-scale invariance, loader cases."""
 
 
+import math
+
 import numpy as np
 import pytest
 
@@ -545,11 +547,12 @@ def test_the_starting_sets_effects_are_not_carried_into_a_fit():
     assert diagnose(rec, res.params).params_before.effects == ()
 
 
-def test_runs_whose_friction_trends_are_counted_with_their_speeds_and_said():
+def test_a_run_whose_friction_trends_is_a_point_of_s_with_its_trend_in_its_sigma_not_a_steady_speed():
     # a constant-velocity run whose friction climbs along it (a ripple seen over part of its
-    # period, a warm-up) is no point of S(v); it is left out, and the note says how many and at
-    # what speeds, so that a sweep's slow end lost that way is seen (a feed axis made apart lost
-    # its 11 slow runs and with them the Stribeck part, with no word)
+    # period, a warm-up) has not settled to one value of S(v): it is kept as a point of S(v)
+    # with half its halves' difference in its σ — a feed axis made apart lost its 11 slow
+    # runs that way, and with them the Stribeck part — but it is no steady speed (the slowest
+    # of those ends the presliding branches), and the note says how many and at what speeds
     from leuven_friction.identify.fit import left_out
     from leuven_friction.identify.segment import constant_velocity_levels, prepare
 
@@ -561,13 +564,17 @@ def test_runs_whose_friction_trends_are_counted_with_their_speeds_and_said():
             moving = k >= 500
             x.append(x[-1] + (v * dt if moving else 0.0))
             t.append(t[-1] + dt)
-            trend = 4.0 * (k - 500) / 2000 if (moving and v == 2e-3) else 0.0  # 4 N over the run
+            trend = 4.0 * (k - 500) / 2000 if (moving and v == 1e-3) else 0.0  # 4 N over the slowest run
             f.append((np.sign(v) * (10.0 + 200.0 * abs(v)) + trend if moving else 0.0) + 0.05 * rng.standard_normal())
     df = __import__("pandas").DataFrame({"time [s]": t, "position [m]": x, "friction [N]": f})
-    prep = prepare(_rec(df, "trend.csv"))
-    levels = constant_velocity_levels(prep)
-    assert len(levels.trending) == 1 and levels.trending[0] == pytest.approx(2e-3, rel=0.02)
-    assert not np.any(np.isclose(levels.velocity, 2e-3, rtol=0.05))
-    assert len(levels.velocity) == len(speeds) - 1
+    levels = constant_velocity_levels(prepare(_rec(df, "trend.csv")))
+    assert len(levels.velocity) == len(speeds)
+    (i,) = np.flatnonzero(levels.trended)
+    assert levels.velocity[i] == pytest.approx(1e-3, rel=0.02)
+    # the kept part (its last 70 %) rises by 4 N·0.7: half the halves' step, 0.7 N, in its σ
+    assert math.sqrt(levels.variance[i]) == pytest.approx(0.7, rel=0.1)
+    assert levels.friction[i] == pytest.approx(10.2 + 4.0 * 0.65, abs=0.1)  # the mean over the kept part
+    assert np.min(np.abs(levels.steady().velocity)) == pytest.approx(1e-3, rel=0.02)  # the negative side's
+    assert not np.any(np.isclose(levels.steady().velocity, 1e-3, rtol=0.05))
     said = left_out(levels, "m")
-    assert "1 run(s) whose friction trends within the run" in said and "at |v| 0.002 m/s" in said
+    assert "1 of them run(s) whose friction trends within the run" in said and "at |v| 0.001 m/s: points of S(v)" in said
