@@ -315,11 +315,15 @@ def cmd_fit(args) -> int:
     Thresholds.checked(overrides)  # a bad setting is refused before any file is read
     # every fit finds its levels and branches in the position: a file without one is refused as it is read
     recs = [load_recording(_recording(path), columns=cols, require=("time", "position")) for path in args.data]
+    from ..identify.segment import check_force_or_friction
+
     for r in recs:
         for note in r.notes:
             print(f"{r.source}: {note}", file=sys.stderr)
         if base is not None and (warning := units_mismatch(args.params, base.units, r)):
             print(warning, file=sys.stderr)
+    for r in recs:
+        check_force_or_friction(r)  # before the kernels' compile note: nothing will be simulated
     if not args.no_refine:
         say_if_compiling()  # the refinement simulates
 

@@ -31,7 +31,9 @@ ALIASES = {  # header names, lower case, units stripped; the German ones as lab 
     "force": ("force", "torque", "applied_torque", "applied_force", "u", "tau", "motor_torque", "f", "kraft",
               "moment", "drehmoment"),
     "velocity": ("velocity", "v", "speed", "qd", "omega", "geschwindigkeit"),
-    "friction": ("friction", "friction_force", "friction_torque", "ff", "reibkraft", "reibmoment", "reibung"),
+    # (Ft beside Fn: a tribometer's tangential force, which is its friction)
+    "friction": ("friction", "friction_force", "friction_torque", "ff", "ft", "f_t", "tangential_force",
+                 "reibkraft", "reibmoment", "reibung"),
     "normal_load": ("normal_load", "load", "normal_force", "fn", "f_n", "n_load", "normal", "n", "normal_load_n",
                     "force_normal", "normalforce", "normalkraft"),
     "temperature": ("temperature", "temp", "t_oil", "celsius", "temperatur"),
@@ -323,7 +325,8 @@ def _read_table(path: Path, text: str) -> pd.DataFrame:
     sep, decimal = sniff(text.splitlines())
     try:
         df = pd.read_csv(io.StringIO(text), sep=sep, engine="c" if sep != r"\s+" else "python", comment="#",
-                         skip_blank_lines=True, decimal=decimal)
+                         skip_blank_lines=True, decimal=decimal,
+                         **({"low_memory": False} if sep != r"\s+" else {}))  # (as ``io.read_table_file``)
         df.attrs["decimal"] = decimal
         return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
@@ -502,10 +505,13 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     if len(bad):
         r = int(bad[0]) + 1
         raw = df[rec.columns["time"]]  # the file's own numbers, in the file's unit
-        raise DataError(
-            f"{path}: column {rec.columns['time']!r} row {row_of(r)}: time {raw.iloc[r]} does not increase "
-            f"(previous {raw.iloc[r - 1]}); sort the file or remove repeated rows"
-        )
+        # a clock that goes back is most often a second log appended (a logger restarted), not
+        # rows out of order
+        why = ("a repeated row: remove repeated rows" if dt[r - 1] == 0 else
+               "the clock goes back: two logs in one file? split it there (fit takes several files), or sort "
+               "the rows if they are out of order")
+        raise DataError(f"{path}: column {rec.columns['time']!r} row {row_of(r)}: time {raw.iloc[r]} does not "
+                        f"increase (previous {raw.iloc[r - 1]}): {why}")
     return rec
 
 

@@ -202,8 +202,10 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
     if len(text) == SNIFF_BYTES and len(lines) > 1:
         lines = lines[:-1]  # the last line of the block may be cut
     sep, decimal = sniff(lines)
+    # low_memory off: a column is typed once, over the whole file (chunk by chunk, a word in one
+    # chunk made pandas warn of mixed types on the console, before the one-line error that names it)
     opts = dict(sep=sep, engine="c" if sep != r"\s+" else "python", comment="#", skip_blank_lines=True,
-                decimal=decimal)
+                decimal=decimal, **({"low_memory": False} if sep != r"\s+" else {}))
 
     def read(enc):
         if usecols is None:

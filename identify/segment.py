@@ -69,9 +69,19 @@ def detect_noise(x) -> object:
         if q > 0 and np.quantile(np.abs(k - np.round(k)), 0.99) < 0.02:
             single = d[np.round(k) == 1]
             q = float(np.mean(single)) if len(single) else q
-            return Quantized(step=q, jitter=0.25 * q)
-    sigma = float(np.sqrt(np.mean([white_noise_sd(a) ** 2 for a in parts if len(a) > 3]))) if parts else 0.0
-    return Gaussian(sigma=max(sigma, 1e-12 * max(scale, 1e-300)))
+            # a grid finer than the noise on it is the digits the file was written with, not
+            # an encoder (a capacitive sensor's 20 nm written to 10⁻¹⁰ m was read as a
+            # 10⁻¹⁰ m encoder, its noise as 2.9·10⁻¹¹): the noise is then the sensor's
+            if _white_sd(parts) <= GRID_UNDER_NOISE * q:
+                return Quantized(step=q, jitter=0.25 * q)
+    return Gaussian(sigma=max(_white_sd(parts), 1e-12 * max(scale, 1e-300)))
+
+
+GRID_UNDER_NOISE = 2.0  # a grid whose step is under half the white noise on it is no encoder's
+
+
+def _white_sd(parts: list) -> float:
+    return float(np.sqrt(np.mean([white_noise_sd(a) ** 2 for a in parts if len(a) > 3]))) if parts else 0.0
 
 
 def noise_sd(noise) -> float:
@@ -235,15 +245,21 @@ def _slope_noise(x_noise, w, dt):
     return x_noise * np.sqrt(12.0 / (w * (w * w - 1.0))) / dt
 
 
-def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | None = None) -> Prepared:
-    """Derive the thresholds and signals of one recording; see the module docstring."""
-    if rec.position is None:
-        raise IdentificationError(f"{rec.source}: needs a position column to find velocity levels and presliding")
+def check_force_or_friction(rec: Recording) -> None:
+    """A fit needs an applied force or a measured friction: refused in one line otherwise,
+    naming the columns that were not recognised and how to name one."""
     if rec.force is None and rec.friction is None:
         why = rec.unrecognised("force", "friction")
         raise IdentificationError(f"{rec.source}: needs a force (applied force/torque) or a friction column"
                                   + (f"; {why}: name it with --columns force=<column> (applied) or "
                                      f"friction=<column> (measured)" if why else ""))
+
+
+def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | None = None) -> Prepared:
+    """Derive the thresholds and signals of one recording; see the module docstring."""
+    if rec.position is None:
+        raise IdentificationError(f"{rec.source}: needs a position column to find velocity levels and presliding")
+    check_force_or_friction(rec)
     th = Thresholds()
     t, x = rec.time, rec.position
     dts = np.diff(t)

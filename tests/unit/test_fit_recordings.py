@@ -578,3 +578,20 @@ def test_a_run_whose_friction_trends_is_a_point_of_s_with_its_trend_in_its_sigma
     assert not np.any(np.isclose(levels.steady().velocity, 1e-3, rtol=0.05))
     said = left_out(levels, "m")
     assert "1 of them run(s) whose friction trends within the run" in said and "at |v| 0.001 m/s: points of S(v)" in said
+
+
+def test_a_refinement_is_kept_on_the_cost_it_minimised_not_against_a_plain_one():
+    # soft L1 is under ½ Σ r² by construction: set against the start's plain cost, a robust
+    # refinement that moved nothing cleared the 10 % bar. Both sides now use the loss minimised
+    from types import SimpleNamespace
+
+    from leuven_friction.identify.refine import _cost, _lowered_enough
+
+    assert _cost(np.array([0.3]), "soft_l1") == pytest.approx(0.5 * 0.09, rel=0.01)  # ½ r² for |r| ≪ 3
+    assert _cost(np.array([300.0]), "soft_l1") == pytest.approx(9.0 * (math.sqrt(1.0 + 1e4) - 1.0))  # ~3|r| beyond
+    r0 = np.concatenate([np.full(50, 0.5), np.full(5, 40.0)])  # a few large residuals
+    unchanged = SimpleNamespace(cost=_cost(r0, "soft_l1"))
+    assert unchanged.cost < 0.9 * 0.5 * float(r0 @ r0)  # what the old bar let through
+    better = {"x": 0.5}
+    assert not _lowered_enough(unchanged, r0, better, {"x": 1.0}, "soft_l1")
+    assert _lowered_enough(SimpleNamespace(cost=0.8 * unchanged.cost), r0, better, {"x": 1.0}, "soft_l1")

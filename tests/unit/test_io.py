@@ -423,3 +423,57 @@ def test_help_of_a_command_that_reads_a_recording_says_how_columns_and_units_are
         main(["fit", "--help"])
     out = capsys.readouterr().out
     assert "friction_torque" in out and "'pos [mm]'" in out and "lbf" in out and "q_ref" in out
+
+
+def test_a_grid_finer_than_the_noise_is_the_files_digits_not_an_encoder(tmp_path):
+    # a capacitive sensor's 20 nm of noise, written to 10⁻³ µm: every reading lies on a 10⁻⁹ m
+    # grid, which had been taken for an encoder (at 10⁻¹⁰ m, x_noise 2.9·10⁻¹¹, and the transition curve
+    # moved by 5 σ against the same file written with more digits); an encoder's readings,
+    # whose steps the noise does not span, stay quantised
+    from leuven_friction.identify.segment import Gaussian, Quantized, detect_noise, noise_sd
+
+    rng = np.random.default_rng(8)
+    t = np.arange(40000) * 5e-4
+    x_um = 1500.0 * np.clip(2.0 * np.sin(2 * np.pi * 0.2 * t), -1.0, 1.0)  # strokes with dwells
+    for name, x, noisy in (("capacitive", x_um + 0.02 * rng.standard_normal(t.size), True),
+                           ("encoder", np.round(x_um / 0.1) * 0.1, False)):
+        p = tmp_path / f"{name}.tsv"
+        p.write_text("t [s]\tx [um]\tFt [N]\n" + "".join(f"{a:.4f}\t{b:.3f}\t1.0\n" for a, b in zip(t, x)))
+        noise = detect_noise(load_recording(p, columns={"friction": "Ft [N]"}).position)
+        if noisy:
+            assert isinstance(noise, Gaussian) and noise_sd(noise) == pytest.approx(2e-8, rel=0.1), noise
+        else:
+            assert isinstance(noise, Quantized) and noise.step == pytest.approx(1e-7, rel=1e-6), noise
+
+
+@pytest.mark.parametrize("times, says", [
+    ([0.0, 0.1, 0.2, 0.3, 0.0, 0.1, 0.2] + [0.3 + 0.1 * i for i in range(1, 10)],
+     r"row 6: time 0.0 does not increase \(previous 0.3\): the clock goes back: two logs in one file\? split it there"),
+    ([0.0, 0.1, 0.2, 0.2] + [0.3 + 0.1 * i for i in range(12)],
+     r"row 5: time 0.2 does not increase \(previous 0.2\): a repeated row: remove repeated rows"),
+])
+def test_time_going_back_is_said_as_two_logs_repeated_time_as_a_repeated_row(tmp_path, times, says):
+    # a logger restarted and appended: "sort the file" was the wrong fix for it
+    p = tmp_path / "two.csv"
+    p.write_text("time,position,force\n" + "".join(f"{t:g},{i},{i}\n" for i, t in enumerate(times)))
+    with pytest.raises(DataError, match=says):
+        load_recording(p)
+
+
+def test_a_word_deep_in_a_long_column_gives_the_one_line_error_alone(tmp_path, recwarn):
+    # pandas reads a long file chunk by chunk; a word in a late chunk made it warn of mixed types
+    # on the console before the error that names the cell
+    p = tmp_path / "long.tsv"
+    rows = [f"{i * 1e-3:.3f}\t{i * 1e-6:.6f}\t{0.5 + 1e-4 * (i % 7):.4f}" for i in range(300000)]
+    rows[250000] = rows[250000].rsplit("\t", 1)[0] + "\tovfl"
+    p.write_text("t [s]\tx [mm]\tFt [N]\n" + "\n".join(rows) + "\n")
+    with pytest.raises(DataError, match=r"column 'Ft \[N\]' row 250002: 'ovfl' is not a finite number"):
+        load_recording(p)
+    assert not [w for w in recwarn if "mixed types" in str(w.message)]
+
+
+def test_a_tribometers_tangential_force_beside_its_normal_force_is_its_friction(tmp_path):
+    p = tmp_path / "tribo.tsv"
+    p.write_text("t [s]\tx [um]\tFt [N]\tFn [N]\n" + "".join(f"{i * 1e-3}\t{i}\t0.5\t10\n" for i in range(20)))
+    rec = load_recording(p)
+    assert rec.columns == {"time": "t [s]", "position": "x [um]", "friction": "Ft [N]", "normal_load": "Fn [N]"}
