@@ -849,7 +849,8 @@ def fit_report(res: FitResult) -> str:
             lines.append(f"    RMS residual {rf['rms_before']:.4g} -> {rf['rms_after']:.4g} ({rf.get('what', '')})")
             if "cost_before" in rf:
                 lines.append(f"    kept on its cost, {rf['cost_before']:.4g} -> {rf['cost_after']:.4g} "
-                             + ("(soft L1 beyond 3 noise σ: a few residuals that grew weigh little)"
+                             + (f"(soft L1 beyond {rf.get('robust_scale', 3.0):g} noise σ: a few residuals that grew "
+                                f"weigh little)"
                                 if rf.get("loss") == "soft_l1" else "(½ Σ r²)")
                              + ", at least 10 % lower, and every experiment's RMS 10 % lower")
         else:

@@ -301,18 +301,21 @@ def sigma1_at_damping_ratio(curve: TransitionCurve, inertia: float, zeta: float 
     return float(2.0 * zeta * np.sqrt(curve.initial_stiffness() * inertia))
 
 
+ROBUST_SCALE = 3.0  # soft L1 beyond this many noise σ (the weighted residuals' unit), in the refinement's least squares
+
+
 def _cost(r: np.ndarray, loss: str) -> float:
-    """The least squares' cost of residuals ``r`` (scipy's: ½ Σ ρ, soft L1 with f_scale 3)."""
+    """The least squares' cost of residuals ``r`` (scipy's: ½ Σ ρ(r²/f²)·f², f = ROBUST_SCALE)."""
     if loss == "soft_l1":
-        return float(0.5 * 9.0 * np.sum(2.0 * (np.sqrt(1.0 + (r / 3.0) ** 2) - 1.0)))
+        f = ROBUST_SCALE
+        return float(0.5 * f * f * np.sum(2.0 * (np.sqrt(1.0 + (r / f) ** 2) - 1.0)))
     return float(0.5 * r @ r)
 
 
 def _lowered_enough(fit, r0: np.ndarray, after: dict, before: dict, loss: str) -> bool:
     """Whether the refinement is worth keeping: its cost 10 % below the start's, both by the
-    loss it minimised (soft L1 had been set against the start's plain ½ Σ r², which is larger
-    by construction: a bar that any robust fit cleared), and every experiment's RMS residual
-    10 % below its own."""
+    loss it minimised (soft L1 had been set against the start's plain ½ Σ r², larger by
+    construction, which lowered the bar), and every experiment's RMS residual 10 % below its own."""
     return bool(fit.cost < 0.9 * _cost(r0, loss)) and all(after[k] < 0.9 * before[k] for k in before)
 
 
@@ -394,7 +397,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
 
     def solve(x, bounds):
         return least_squares(resid, x, bounds=bounds, x_scale="jac", method="trf", max_nfev=max_nfev, loss=loss,
-                             f_scale=3.0, diff_step=1e-5)
+                             f_scale=ROBUST_SCALE, diff_step=1e-5)
 
     try:
         bounds = (lo, hi)
@@ -513,6 +516,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                       # what decided (``_lowered_enough``): the plain RMS above can rise where a few
                       # samples grow, the robust cost falling (a tribometer made apart: 81.0 → 83.7, kept)
                       "cost_before": _cost(r0, loss), "cost_after": float(fit.cost), "loss": loss,
+                      "robust_scale": ROBUST_SCALE,
                       "what": ("S(v), transition curve" if motion and vec.has_tc else "S(v) (transition curve from the ML step)"
                                if motion else "transition curve only (S(v) from the Markov step)")
                               + "; weighted residuals (1 = the noise floor); per experiment in data units: "

@@ -582,7 +582,7 @@ def test_a_run_whose_friction_trends_is_a_point_of_s_with_its_trend_in_its_sigma
 
 def test_a_refinement_is_kept_on_the_cost_it_minimised_not_against_a_plain_one():
     # soft L1 is under ½ Σ r² by construction: set against the start's plain cost, a robust
-    # refinement that moved nothing cleared the 10 % bar. Both sides now use the loss minimised
+    # refinement that moved nothing could clear the 10 % bar. Both sides now use the loss minimised
     from types import SimpleNamespace
 
     from leuven_friction.identify.refine import _cost, _lowered_enough
