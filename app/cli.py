@@ -445,7 +445,7 @@ def cmd_samples(args) -> int:
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="leuven-friction", description="Leuven integrated friction model: simulate, fit, explore.")
     sub = ap.add_subparsers(dest="command", required=True)
-    from ..identify.data import columns_help
+    from ..identify.columns import columns_help
 
     # the commands that read a recording say how its columns and units are read
     reads_files = {"epilog": columns_help(), "formatter_class": argparse.RawDescriptionHelpFormatter}

@@ -14,30 +14,15 @@ import io
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
+import pandas as pd
 
+from .columns import ALIASES, UNITS_ACCEPTED
 from .errors import DataError
-
-if TYPE_CHECKING:  # pandas is imported where tables are read (see ``numbers_of``)
-    import pandas as pd
 
 SIGNALS = ("time", "position", "force", "velocity", "friction", "normal_load", "temperature")
 
-ALIASES = {  # header names, lower case, units stripped; the German ones as lab software writes them
-    "time": ("time", "t", "timestamp", "time_s", "seconds", "zeit"),
-    "position": ("position", "x", "q", "angle", "pos", "displacement", "theta", "joint_angle", "weg", "winkel"),
-    "force": ("force", "torque", "applied_torque", "applied_force", "u", "tau", "motor_torque", "f", "kraft",
-              "moment", "drehmoment"),
-    "velocity": ("velocity", "v", "speed", "qd", "omega", "geschwindigkeit"),
-    # (Ft beside Fn: a tribometer's tangential force, which is its friction)
-    "friction": ("friction", "friction_force", "friction_torque", "ff", "ft", "f_t", "tangential_force",
-                 "reibkraft", "reibmoment", "reibung"),
-    "normal_load": ("normal_load", "load", "normal_force", "fn", "f_n", "n_load", "normal", "n", "normal_load_n",
-                    "force_normal", "normalforce", "normalkraft"),
-    "temperature": ("temperature", "temp", "t_oil", "celsius", "temperatur"),
-}
 
 # factor to SI, and the SI unit it lands in
 UNITS = {
@@ -88,27 +73,6 @@ _PRODUCT = re.compile(r"\s*[*·⋅.×-]\s*|\s+")
 # the single units a product or a quotient is made of, by kind (the lower-case keys of UNITS)
 _FORCE = ("n", "mn", "un", "µn", "kn", "lbf", "lb", "ozf")
 _LENGTH = ("m", "mm", "um", "µm", "nm", "in", "ft")
-UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm, in, mil, ft; rad, mrad, urad, deg; N, mN, uN, kN, lbf (lb), ozf; "
-                  "their products for a torque (N·m, N*m, N.m, N-m, mN·m, N·mm, Nmm, mNm, lbf·in, in-lb, lbf·ft) and "
-                  "quotients for a speed (mm/s, in/s, deg/s, rad/s); °C, K")
-
-
-def columns_help() -> str:
-    """How a file's columns are recognised and its units read, for a command's --help (from
-    ALIASES and UNITS_ACCEPTED: what the reader does, said once)."""
-    import textwrap
-
-    def para(text, indent=""):
-        return textwrap.fill(text, 78, initial_indent=indent, subsequent_indent=indent + "  ")
-
-    return "\n".join(
-        [para("columns are recognised by their header names (any case; for time, position, force and friction "
-              "a word of a longer name too: tau_motor, x_mm), unless --columns names them:")]
-        + [para(f"{sig}: {', '.join(ALIASES[sig])}", "  ") for sig in ALIASES]
-        + [para("a name that reads as a reference, command, model or estimate (q_ref, pos_cmd, friction_model) "
-                "is not taken."),
-           para("units: in brackets after the name ('pos [mm]', 'time [ms]') or as its last word (x_mm); a "
-                "header without one is read as SI. Known: " + UNITS_ACCEPTED + ".")])
 
 
 def _single(word: str) -> tuple[float, str] | None:
@@ -159,9 +123,10 @@ def _fits(unit: str | None, sig: str) -> bool:
 
 def _reads_as_not_measured(key: str, sig: str) -> str:
     """What a header name's words say a column of signal ``sig`` is if not a measurement ("a
-    reference (ref)", "a command (cmd)" of a motion; a commanded force is the one applied), or ""."""
+    reference (ref)", "a command (cmd)" of a motion; a commanded force is the one applied), or "":
+    such a column is not recognised by its words (``recognise``), and one named as asked is said."""
     for w in (w for w in key.split("_") if w):
-        if w in _COMMANDED and sig in ("position", "velocity"):
+        if w in _COMMANDED and sig in ("time", "position", "velocity"):
             return f"a command ({w})"
         if w in _NOT_MEASURED:
             return f"a reference, model or estimate ({w})"
@@ -183,13 +148,9 @@ def recognise(key: str, unit: str | None = None) -> list:
     for sig, names in ALIASES.items():
         if word_unit is not None and base in names:  # a known name followed by its unit
             return [(sig, word_unit if _fits(word_unit, sig) else None)]
-    if any(w in _NOT_MEASURED for w in words):
-        return []
     out = []
     for sig, names in WORDS.items():
-        if not any(w in names for w in words):
-            continue
-        if sig in ("time", "position") and any(w in _COMMANDED for w in words):
+        if not any(w in names for w in words) or _reads_as_not_measured(base, sig):
             continue
         if unit is not None and not _fits(unit, sig):
             continue
@@ -308,8 +269,6 @@ def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
     comma, a column that holds a word somewhere is read as text with its numbers' commas in
     place: they are read as decimal marks here, so the message names the word, not the first
     number (which "0,5" would otherwise be)."""
-    import pandas as pd  # (here, not at import: `--help` reads this module's names, not its tables)
-
     if decimal != "." and not pd.api.types.is_numeric_dtype(raw.dtype):
         raw = raw.map(lambda c: c.replace(decimal, ".") if isinstance(c, str) else c)
     return pd.to_numeric(raw, errors="coerce").to_numpy(dtype=np.float64)
@@ -318,8 +277,6 @@ def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
 def _read_table(path: Path, text: str) -> pd.DataFrame:
     """Guess the separator from the header (the first line that is not a ``#`` comment):
     tab, semicolon (European CSV: then a comma is the decimal mark), comma, or whitespace."""
-    import pandas as pd
-
     from .io import sniff  # the one guess, shared with the reader of files
 
     sep, decimal = sniff(text.splitlines())

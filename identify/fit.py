@@ -217,9 +217,6 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
         return levels, ""
     mine = np.isin(np.sign(levels.velocity), taken)
     new = np.isin(np.sign(extra.velocity), taken)
-    arrays = (np.concatenate([getattr(levels, k)[~mine], getattr(extra, k)[new]])
-              for k in ("velocity", "friction", "variance", "count"))
-    trended = np.concatenate([levels.is_trended[~mine], np.zeros(int(new.sum()), bool)])
 
     def held_at(s):
         mine_s = levels.velocity * s > 0
@@ -227,7 +224,9 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
                 f"{distinct_speeds(levels.velocity[mine_s])} distinct speed(s))")
 
     words = " and ".join(held_at(s) for s in taken)
-    return (Levels(*arrays, opposing=levels.opposing, creep=levels.creep, trended=trended if trended.any() else None),
+    # (the runs left out are the constant-velocity ones' alone; the sliding has no times)
+    joined = Levels.joined([levels.kept(~mine), extra.kept(new)])
+    return (dataclasses.replace(joined, opposing=levels.opposing, creep=levels.creep, time=None),
             f"{words}: S(v) from {int(new.sum())} speed level(s) of steady gross sliding instead (past "
             f"{GROSS_SLIDING:g} × {z_range:.3g} of travel after each reversal, the median range over which the "
             f"friction crossed to sliding; the velocity changing by under 5 % over that range; binned in log|v|)")
@@ -849,7 +848,7 @@ def fit_report(res: FitResult) -> str:
             lines.append(f"    RMS residual {rf['rms_before']:.4g} -> {rf['rms_after']:.4g} ({rf.get('what', '')})")
             if "cost_before" in rf:
                 lines.append(f"    kept on its cost, {rf['cost_before']:.4g} -> {rf['cost_after']:.4g} "
-                             + (f"(soft L1 beyond {rf.get('robust_scale', 3.0):g} noise σ: a few residuals that grew "
+                             + (f"(soft L1 beyond {rf['robust_scale']:g} noise σ: a few residuals that grew "
                                 f"weigh little)"
                                 if rf.get("loss") == "soft_l1" else "(½ Σ r²)")
                              + ", at least 10 % lower, and every experiment's RMS 10 % lower")

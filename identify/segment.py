@@ -52,6 +52,7 @@ def detect_noise(x) -> object:
     x = np.concatenate(parts)
     d = np.abs(np.concatenate([np.diff(a) for a in parts]))
     scale = np.max(np.abs(x)) if len(x) else 1.0
+    white = float(np.sqrt(np.mean([white_noise_sd(a) ** 2 for a in parts if len(a) > 3]))) if parts else 0.0
     d = d[d > 1e-9 * scale]
     if len(d):
         # the grid step: the smallest step, or the smallest difference between distinct small
@@ -72,16 +73,12 @@ def detect_noise(x) -> object:
             # a grid finer than the noise on it is the digits the file was written with, not
             # an encoder (a capacitive sensor's 20 nm written to 10⁻¹⁰ m was read as a
             # 10⁻¹⁰ m encoder, its noise as 2.9·10⁻¹¹): the noise is then the sensor's
-            if _white_sd(parts) <= GRID_UNDER_NOISE * q:
+            if white <= GRID_UNDER_NOISE * q:
                 return Quantized(step=q, jitter=0.25 * q)
-    return Gaussian(sigma=max(_white_sd(parts), 1e-12 * max(scale, 1e-300)))
+    return Gaussian(sigma=max(white, 1e-12 * max(scale, 1e-300)))
 
 
 GRID_UNDER_NOISE = 2.0  # a grid whose step is under half the white noise on it is no encoder's
-
-
-def _white_sd(parts: list) -> float:
-    return float(np.sqrt(np.mean([white_noise_sd(a) ** 2 for a in parts if len(a) > 3]))) if parts else 0.0
 
 
 def noise_sd(noise) -> float:
