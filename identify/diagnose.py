@@ -974,6 +974,7 @@ class Term:
                 f"strokes, other speeds) would look the same. To tell: {EFFECTS[self.name].separated_by}")
 
 
+STEP_LABEL_WIDTH = 44  # the report's column of step labels
 SETTLE_TOL = math.log(1.02)  # a scale within 2 % of a bound is at it
 BOUND_TOL = 1e-3  # a linear parameter within this fraction of its range from a bound is at it
 
@@ -2347,7 +2348,11 @@ class Diagnosis:
                                                "one given, the alternative a step of the comparison only"))
         nz = self.noise if self.noise > 0 else float("nan")
         for s in self.steps:
-            L.append(f"  {s['label']:44s} {s['rms']:.4g} ({s['rms'] / nz:.2f} × noise)   "
+            label = s["label"]
+            if len(label) > STEP_LABEL_WIDTH:  # (the alternative's, with its factors) on a line of its own
+                L.append(f"  {label}")
+                label = ""
+            L.append(f"  {label:{STEP_LABEL_WIDTH}s} {s['rms']:.4g} ({s['rms'] / nz:.2f} × noise)   "
                      f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
             if s.get("params"):
                 own = "" if "params_decided" in s else f"the file's {s.get('name') or 'effect'}, refitted with it: "
@@ -3094,8 +3099,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             st["sd"] = with_model_shift(st["sd"], st["params_decided"], st["params"])
         step_preds.append(wf.pred)
     # the alternative's level scales the whole friction beside the free steady curve; the model
-    # written refits the S(v) levels themselves (its note below): two different factors
-    steps[1]["label"] = f"alternative (free steady curve): level ×{null.g:.3f}, stiffness ×{null.k0:.3f}"
+    # written refits the S(v) levels themselves (its note below): two different factors. Said as
+    # "all friction ×g", not "level ×g": the latter read as a change of S(v) by that much
+    steps[1]["label"] = (f"alternative (free steady curve): all friction ×{null.g:.3f}, "
+                         f"presliding stiffness ×{null.k0:.3f}")
     if final_reid is not None:
         cmp_.notes.append(f"S(v) identified anew for the model written from the steady sliding ({final_reid.levels} speed "
                           f"levels, the level and the friction effects divided out; the Markov estimator, holding what "

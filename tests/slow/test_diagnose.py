@@ -9,6 +9,7 @@ The base model is the generator's own friction without the effect, seen through 
 model (``synth.hidden.oracle_params``): a model as good as a fit can be, of another form."""
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -87,6 +88,12 @@ def test_a_base_off_by_half_is_returned_as_given_and_said_to_be_off():
     assert d.effects == [] and d.params_after is off, d.text()
     assert d.rms_after == d.steps[0]["rms"] > 10 * d.steps[1]["rms"], d.text()
     assert any("the base, not a missing effect, is what is off" in n for n in d.notes), d.text()
+    # and the alternative's step says which way: all of the friction scaled down, towards 1/1.5
+    # (the free steady curve beside it takes a part: measured ×0.58), said as a scale of all the
+    # friction, not as "level ×0.58", which read as a change of S(v)
+    label = d.steps[1]["label"]
+    g = float(re.search(r"all friction ×([0-9.]+), presliding stiffness ×", label).group(1))
+    assert 0.4 < g < 0.8, label
 
 
 def test_diagnose_cli_writes_json_html_yaml_that_simulate_reproduces(tmp_path):
