@@ -65,6 +65,7 @@ out-of-sample evidence, add it, refit, look again.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from collections.abc import Mapping
@@ -925,6 +926,20 @@ class Term:
     fixed: dict
     free: tuple  # (param name, transform "lin"|"log", lo, hi) in transformed coordinates
     settles: str | None = None  # the free scale over which the effect must be seen to settle (see ``unsettled``)
+    # a "log" parameter with a unit is taken relative to a scale of the record, u = ln(value/ref)
+    # (a drift's τ in the session's duration, a ripple's λ in the travel): u, its bounds, the
+    # optimiser's steps and its stopping test are then the same in any unit — in ln(value) a
+    # ripple of 5 mm sat at u = −5.3 written in m and at 1.6 written in mm, and the
+    # finite-difference steps, relative to |u|, differed by three times
+    refs: Mapping[str, float] = field(default_factory=dict)
+
+    def value(self, pname: str, tr: str, u: float) -> float:
+        """The parameter's value at its transformed coordinate ``u``."""
+        return float(self.refs.get(pname, 1.0) * math.exp(u)) if tr == "log" else float(u)
+
+    def coordinate(self, pname: str, tr: str, value: float) -> float:
+        """The transformed coordinate of the parameter's ``value`` (``value``'s inverse)."""
+        return math.log(value / self.refs.get(pname, 1.0)) if tr == "log" else float(value)
 
     def at_bounds(self, u: np.ndarray) -> set:
         """The free parameters of the term's part ``u`` of a fit that ended at a bound of their
@@ -967,9 +982,11 @@ class Term:
                      f"makes at most a part of it (within passes that run their speeds in order), but one "
                      f"changing with time would look the same" if unordered else
                      "a trend along the session's schedule (time, speed levels in order) would look the same")
-            return (f"its {self.settles} is at its bound {math.exp(hi):.3g}: the change does not settle within the "
+            return (f"its {self.settles} is at its bound {self.value(self.settles, 'log', hi):.3g}: the change does not "
+                    f"settle within the "
                     f"session, and {trend}. To tell: {EFFECTS[self.name].separated_by}")
-        return (f"its {self.settles} is at its lower bound {math.exp(lo):.3g}: the change is over within the "
+        return (f"its {self.settles} is at its lower bound {self.value(self.settles, 'log', lo):.3g}: the change is "
+                f"over within the "
                 f"first few reversals, and a step between the session's first experiment and the next (other "
                 f"strokes, other speeds) would look the same. To tell: {EFFECTS[self.name].separated_by}")
 
@@ -1025,7 +1042,8 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
         # τ ≥ T/10: a faster "drift" is a transient the first experiments of the session see
         # alone — a step between them and the rest, which a schedule ordered in time makes
         # out of any misfit of the model (a session must see a good part of a drift's course)
-        return Term(name, {"t0": t0}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(T / 10), math.log(20 * T))))
+        return Term(name, {"t0": t0}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(0.1), math.log(20.0))),
+                    refs={"tau": T})
     if name == "normal_load":
         n = cmp_.load
         moving = np.abs(cmp_.velocity) > cmp_.v_rest
@@ -1035,8 +1053,8 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
         span = float(np.ptp(cmp_.path))
         lo = min(ripple_min_wavelength(cmp_), span / 4)
         return Term(name, {}, (("cs", "lin", -0.9, 0.9), ("cc", "lin", -0.9, 0.9),
-                               ("wavelength", "log", math.log(lo), math.log(span / 2)),
-                               ("cs2", "lin", -0.5, 0.5), ("cc2", "lin", -0.5, 0.5)))
+                               ("wavelength", "log", math.log(lo / span), math.log(0.5)),
+                               ("cs2", "lin", -0.5, 0.5), ("cc2", "lin", -0.5, 0.5)), refs={"wavelength": span})
     if name == "cyclic_softening":
         th = cmp_.min_excursion if threshold is None else float(threshold)
         nrev = float(significant_reversals(cmp_.path, th)[-1])
@@ -1070,7 +1088,7 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
 def _entry(term: Term, u: np.ndarray) -> dict:
     vals = dict(term.fixed)
     for (pname, tr, _, _), ui in zip(term.free, u):
-        vals[pname] = float(math.exp(ui)) if tr == "log" else float(ui)
+        vals[pname] = term.value(pname, tr, ui)
     if term.name == "position_ripple":
         # amplitude and phase of each harmonic from its sine and cosine parts (linear in them)
         cs, cc = vals.pop("cs"), vals.pop("cc")
@@ -1100,7 +1118,7 @@ def _entry_to_u(term: Term, params: dict) -> np.ndarray:
         vals["cc2"] = vals.get("a2", 0.0) * math.sin(vals.get("phase2", 0.0))
     out = []
     for pname, tr, lo, hi in term.free:
-        u = math.log(vals[pname]) if tr == "log" else float(vals[pname])
+        u = term.coordinate(pname, tr, vals[pname])
         out.append(min(max(u, lo), hi))
     return np.array(out)
 
@@ -1189,8 +1207,13 @@ class FreeSteadyCurve:
             G[k + j, :k] = G[:k, k + j] = np.bincount(i0, w0 * em, k) + np.bincount(i1, w1 * em, k)
             for jj in range(j + 1):
                 G[k + j, k + jj] = G[k + jj, k + j] = em @ extra[jj]
+        # a ridge of 10⁻⁹ of the largest hat's square on the hats (1 where one has no sample), of
+        # its own square on each extra column: one of the largest diagonal of all weighed the
+        # hats against the acceleration's column, whose square follows the units (a record in
+        # mm had a million times the ridge it had in m, and its alternative ended a quarter worse)
         d = np.diag(G).copy()
-        G[np.diag_indices(K)] += 1e-9 * (d.max() if d.size else 1.0) + (d == 0)
+        ridge = np.concatenate([np.full(k, d[:k].max() if k else 1.0), d[k:]])
+        G[np.diag_indices(K)] += 1e-9 * ridge + (d == 0)
         Ginv = np.linalg.inv(G)
         return Ginv @ b, Ginv
 
@@ -1737,6 +1760,7 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
                          np.full(NC, c), [f[3] for t in terms for f in t.free]])
     u0 = np.concatenate([np.zeros(nb), prior_u]) if start is None else np.asarray(start, float)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
+
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3,
                         max_nfev=max_nfev if engine.c.space == "friction" else 15, **engine.loss())
     g, kk, p, entries = unpack(sol.x)
@@ -1812,13 +1836,14 @@ def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, b
     """Starting values (transformed) for the shape parameter, before amplitudes are solved."""
     T = float(cmp_.time[-1] - cmp_.time[0])
     if name == "time_drift":
-        return [("tau", math.log(v)) for v in T * np.geomspace(0.1, 3.0, 6)]
+        return [("tau", term.coordinate("tau", "log", v)) for v in T * np.geomspace(0.1, 3.0, 6)]
     if name == "cyclic_softening":
         nrev = float(significant_reversals(cmp_.path, term.fixed["min_excursion"])[-1]) or 1.0
-        return [("n_c", math.log(max(v, 3.0))) for v in nrev * np.geomspace(0.05, 0.5, 4)]
+        return [("n_c", term.coordinate("n_c", "log", max(v, 3.0))) for v in nrev * np.geomspace(0.05, 0.5, 4)]
     if name == "position_ripple":
-        lo = term.free[2][2]
-        return [("wavelength", math.log(v)) for v in _ripple_wavelengths(cmp_, resid, base, lo)]
+        lam_min = term.value("wavelength", "log", term.free[2][2])
+        return [("wavelength", term.coordinate("wavelength", "log", v))
+                for v in _ripple_wavelengths(cmp_, resid, base, lam_min)]
     return [(None, None)]
 
 
@@ -2812,7 +2837,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     for e in prior0:
         if e["name"] in EFFECTS and e["name"] != "presliding_stiffness":
             tm = _terms_for(e["name"], cmp_, strokes, e["params"].get("min_excursion"))
-            tm = Term(tm.name, {k: e["params"][k] for k in tm.fixed}, tm.free, tm.settles)
+            tm = dataclasses.replace(tm, fixed={k: e["params"][k] for k in tm.fixed})
             prior_terms.append(tm)
             prior_u = np.concatenate([prior_u, _entry_to_u(tm, e["params"])])
     # first as the model alone (its memory's constant and inertia free, as the model written), then

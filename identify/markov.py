@@ -132,28 +132,34 @@ def fit_side(levels: Levels, sign: int, start: dict | None = None, hold: dict | 
         lo_b = np.array([-big, -big, -big, 0.05, 0.0])
         hi_b = np.array([-tiny, -tiny, -tiny, 5.0, big])
     full0 = np.array([hold.get(k, np.nan) for k in NAMES])
+    # the optimiser works on the parameters in units of the side's own force and speed (Fs, Fc
+    # in max|F|, vs in max|v|, σ2 in their ratio): its stopping test weighs a step against |θ|,
+    # and in the file's units the same levels written in N or mN, m/s or mm/s stopped elsewhere
+    f_unit, v_unit = float(np.max(np.abs(F))) or 1.0, float(np.max(a)) or 1.0
+    unit = np.array([f_unit, f_unit, v_unit, 1.0, f_unit / v_unit])[free]
 
     def expand(theta):
         th = full0.copy()
-        th[free] = theta
+        th[free] = theta * unit
         return th
 
     def resid(theta):
         return w * (F - stribeck_plus_viscous(expand(theta), v))
 
     def jac(theta):
-        return -w[:, None] * _jacobian(expand(theta), v)[:, free]
+        return -w[:, None] * _jacobian(expand(theta), v)[:, free] * unit
 
-    lo_f, hi_f = lo_b[free], hi_b[free]
+    lo_f, hi_f = lo_b[free] / unit, hi_b[free] / unit
+    lo_f[lo_b[free] == tiny], hi_f[hi_b[free] == -tiny] = tiny, -tiny  # (a sign bound stays one in any unit)
     fin_lo, fin_hi = np.isfinite(lo_f), np.isfinite(hi_f)
     lo_pad, hi_pad = lo_f.copy(), hi_f.copy()
     lo_pad[fin_lo] += np.abs(lo_f[fin_lo]) * 1e-9 + 1e-300
     hi_pad[fin_hi] -= np.abs(hi_f[fin_hi]) * 1e-9 + 1e-300
     pad = lambda x0: np.clip(x0, lo_pad, hi_pad)  # noqa: E731
     if start is not None:
-        starts = [pad(np.array([start[k] for k in NAMES])[free])]
+        starts = [pad(np.array([start[k] for k in NAMES])[free] / unit)]
     else:
-        starts = [pad(np.array([Fs0, Fc0, sign * vs0, d0, s2])[free])
+        starts = [pad(np.array([Fs0, Fc0, sign * vs0, d0, s2])[free] / unit)
                   for vs0 in np.quantile(a, [0.1, 0.3, 0.6]) for d0 in (0.5, 1.0, 2.0)]
         uniq = []
         for x0 in starts:
@@ -165,7 +171,7 @@ def fit_side(levels: Levels, sign: int, start: dict | None = None, hold: dict | 
         r = least_squares(resid, x0, jac=jac, bounds=(lo_f, hi_f), method="trf", x_scale="jac", max_nfev=300)
         if best is None or r.cost < best.cost:
             best = r
-    J = best.jac
+    J = best.jac / unit  # d(residual)/d(parameter in the file's units)
     notes = []
     sd_full = np.zeros(5)
     cov = None

@@ -198,7 +198,12 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
         F_start = np.maximum.accumulate(F_start) + 1e-3 * np.max(br.force) * np.arange(len(z_knots))
         F_start[0] = 0.0
     x_scale = max(np.ptp(b.displacement) for b in branches) or 1.0
-    theta0 = np.log(np.diff(F_start))
+    # the increments as log factors of the start's: θ = 0 at the start in any unit, so the
+    # optimiser's steps and its stopping test (relative to |θ|) are the same for a recording
+    # written in N or in mN — as the log of an increment in the file's unit they were not, and
+    # the same recording re-expressed stopped at another point of a flat likelihood
+    log_start = np.log(np.diff(F_start))
+    theta0 = np.zeros(nk)
     if fit_n:
         theta0 = np.append(theta0, np.log(n))
     # offsets in units of the displacement span: keeps the problem well scaled
@@ -206,6 +211,7 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
 
     def split(theta):
         th = theta.copy()
+        th[:nk] += log_start
         th[nk + (1 if fit_n else 0):] *= x_scale
         return _unpack(th, nk, len(branches), fit_n, n)
 
@@ -224,7 +230,7 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
     f_max = max(np.max(b.force) for b in branches)
     lo = np.full(len(theta0), -np.inf)
     hi = np.full(len(theta0), np.inf)
-    lo[:nk], hi[:nk] = np.log(1e-6 * f_max), np.log(20.0 * f_max)
+    lo[:nk], hi[:nk] = np.log(1e-6 * f_max) - log_start, np.log(20.0 * f_max) - log_start
     if fit_n:
         lo[nk], hi[nk] = np.log(0.5), np.log(50.0)
     theta0 = np.clip(theta0, lo + 1e-9, hi - 1e-9)
