@@ -301,7 +301,6 @@ def sigma1_at_damping_ratio(curve: TransitionCurve, inertia: float, zeta: float 
     return float(2.0 * zeta * np.sqrt(curve.initial_stiffness() * inertia))
 
 
-REFINE_CONTINUATIONS = 2  # a least squares that used its budget short of the bar is continued this often at most
 ROBUST_SCALE = 3.0  # soft L1 beyond this many noise σ (the weighted residuals' unit), in the refinement's least squares
 
 
@@ -396,22 +395,9 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     held_tc = np.zeros(len(theta0), dtype=bool)
     continued = False  # the least squares continued past its evaluation budget (below)
 
-    # the optimiser works in coordinates of the start's own size, 1 at the start: an S(v) entry
-    # as a multiple of its start, a log-increment of F_d and log σ1 as 1 + their change. Its
-    # first trust region is |x| at the start and its stopping test weighs a step against |x|:
-    # in the file's units (log F_d in N or in mN differ by 6.9) the same recording re-expressed
-    # began with another trust region and stopped elsewhere along a flat valley of the cost
-    ns = len(vec.s_paths)
-    shift = np.where(np.arange(len(theta0)) < ns, 0.0, theta0 - 1.0)
-    size = np.where(np.arange(len(theta0)) < ns, np.where(theta0 != 0.0, np.abs(theta0), 1.0), 1.0)
-
     def solve(x, bounds):
-        lo_x, hi_x = (bounds[0] - shift) / size, (bounds[1] - shift) / size
-        f = least_squares(lambda xi: resid(shift + size * xi), np.clip((x - shift) / size, lo_x, hi_x),
-                          bounds=(lo_x, hi_x), x_scale="jac", method="trf", max_nfev=max_nfev, loss=loss,
-                          f_scale=ROBUST_SCALE, diff_step=1e-5)
-        f.x, f.jac = shift + size * f.x, f.jac / size  # back to θ (``_Vector``'s own coordinates)
-        return f
+        return least_squares(resid, x, bounds=bounds, x_scale="jac", method="trf", max_nfev=max_nfev, loss=loss,
+                             f_scale=ROBUST_SCALE, diff_step=1e-5)
 
     try:
         bounds = (lo, hi)
@@ -425,20 +411,17 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
             bounds = (np.where(held_tc, theta0 - pad, lo), np.where(held_tc, theta0 + pad, hi))
             fit = solve(np.clip(fit.x * ~held_tc + theta0 * held_tc, *bounds), bounds)
         # the evaluation budget is sized for the usual descent; one that used it up short of the
-        # 10 % below is continued from where it stopped, at most REFINE_CONTINUATIONS times, so
-        # that whether the refinement is kept does not hinge on where the budget cut the descent
-        # (another CPU's rounding moved a linear stage's stop after 20 evaluations from below the
-        # bar to 9.2 % under the start's RMS; continued, it ends 18 % under it; in coordinates
-        # free of the file's units a generator's linear stage needed a second continuation)
+        # 10 % below is continued once from where it stopped, so that whether the refinement is
+        # kept does not hinge on where the budget cut the descent (another CPU's rounding moved
+        # a linear stage's stop after 20 evaluations from below the bar to 9.2 % under the
+        # start's RMS; continued, it ends 18 % under it)
         after_try = rms(fit.x)
         continued = fit.status == 0 and not _lowered_enough(fit, r0, after_try, before, loss)
-        for _ in range(REFINE_CONTINUATIONS if continued else 0):
+        if continued:
             spent = fit.nfev
             fit = solve(fit.x, bounds)
             fit.nfev += spent
             after_try = rms(fit.x)
-            if fit.status != 0 or _lowered_enough(fit, r0, after_try, before, loss):
-                break
     except (ValueError, np.linalg.LinAlgError) as e:
         res.refinement = {"done": False, "reason": f"the simulation-based least squares failed ({e})"}
         return res
@@ -538,7 +521,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                                if motion else "transition curve only (S(v) from the Markov step)")
                               + "; weighted residuals (1 = the noise floor); per experiment in data units: "
                               + "; ".join(f"{k}: {before[k]:.3g} -> {after[k]:.3g}" for k in before)
-                              + ("; continued past the evaluation budget" if continued else ""),
+                              + ("; continued once past the evaluation budget" if continued else ""),
                       "per_experiment_before": before, "per_experiment_after": after, "evaluations": int(fit.nfev),
                       "continued": continued}
     return res

@@ -574,3 +574,35 @@ def test_two_effects_that_explain_the_same_part_are_reported_confounded_with_the
     assert pair and not ({"normal_load", "cyclic_softening"} & set(d.effects)), d.text()
     assert all(c["beside_gain"] is not None for c in pair)
     _assert_subsumed_pairs_are_said(d)
+
+
+@pytest.mark.parametrize("kind, seed, effect", [("linear_stage", 1021, "position_ripple"), ("tribometer", 1002, "time_drift")])
+def test_the_same_machine_at_another_scale_gets_the_same_diagnosis(kind, seed, effect):
+    # the user's path (`fit`, then `diagnose` with what it wrote) on a recording and on the same
+    # recording written as another machine: a thousand times the travel, a thousandth of the
+    # force, ten times slower (the header's units kept: no conversion the reader undoes). The
+    # same effect is named, with its parameters in that machine's scale, and each gap is the
+    # same in its force unit. Written a thousand times larger in travel and force, the linear
+    # stage once named a drift beside its ripple: the free steady curve's ridge, a 10⁻⁹ of the
+    # largest square of its columns, followed the acceleration's units onto the hats, and the
+    # alternative every effect must beat ended a quarter worse.
+    from leuven_friction.identify.fit import fit_recordings
+    from synth.hidden import SUITE_RATE
+
+    df, _, _ = make_case(kind, seed, (effect,), rate=SUITE_RATE[kind])
+    kx, kf, kt = 1e3, 1e-3, 10.0
+    other = df.copy()
+    for c in other.columns:
+        name = c.lower()
+        other[c] = other[c] * (kt if name.startswith("time") else kx if name.startswith(("position", "angle")) else
+                               kf if name.startswith(("torque", "force", "friction", "applied")) else 1.0)
+    a, b = (diagnose(r, fit_recordings([r]).params) for r in (to_recording(df, "a.csv"), to_recording(other, "b.csv")))
+    assert a.effects == b.effects == [effect], (a.text(), b.text())
+    for sa, sb in zip(a.steps, b.steps, strict=True):
+        assert sb["rms"] / kf == pytest.approx(sa["rms"], rel=0.03), (a.text(), b.text())
+    pa, pb = (next(e["params"] for e in d.params_after.effects if e["name"] == effect) for d in (a, b))
+    if effect == "position_ripple":
+        assert pb["wavelength"] / kx == pytest.approx(pa["wavelength"], rel=1e-3)
+        assert pb["a"] == pytest.approx(pa["a"], rel=0.01)
+    else:
+        assert pb["tau"] / kt == pytest.approx(pa["tau"], rel=0.05) and pb["b"] == pytest.approx(pa["b"], rel=0.02)
