@@ -232,6 +232,7 @@ def _level_residuals(p, levels):
     return (levels.friction - stribeck_curve(p, levels.velocity)) / np.sqrt(levels.variance)
 
 
+REFINED_TOP_MAX = 10.0  # … and at most this multiple of it (beyond, a segment ran off where no force bounds it)
 REFINED_TOP_MIN = 0.5  # the refined F_d's top must keep at least this fraction of the maximum-likelihood one
 
 
@@ -456,6 +457,14 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
             return res
     if vec.has_tc:
         top = float(vec.unpack(fit.x).transition_curve.F[-1])
+        if top > REFINED_TOP_MAX * res.params.transition_curve.F[-1]:
+            # a segment the simulated stretches barely reach ran off (robot joint 3010 of the
+            # suite: F_d's top 8.1 → 1.5·10¹⁴ N·m, finite, so the check above let it through):
+            # no force of the record bounds it, so not a refinement of the curve
+            res.refinement = {"done": False, "reason": f"the refined transition curve's top rose to {top:.3g} from "
+                              f"{res.params.transition_curve.F[-1]:.3g}: kept the Markov and maximum-likelihood estimates",
+                              "rms_before": before}
+            return res
         if top < REFINED_TOP_MIN * res.params.transition_curve.F[-1]:
             # the opening presliding stretch bounds the lower segments only; the upper ones
             # collapsed (robot joint 1003 of the generator: F_d's top 11.1 → 3.46 N·m for an outer
