@@ -983,11 +983,9 @@ class Term:
                      f"changing with time would look the same" if unordered else
                      "a trend along the session's schedule (time, speed levels in order) would look the same")
             return (f"its {self.settles} is at its bound {self.value(self.settles, 'log', hi):.3g}: the change does not "
-                    f"settle within the "
-                    f"session, and {trend}. To tell: {EFFECTS[self.name].separated_by}")
+                    f"settle within the session, and {trend}. To tell: {EFFECTS[self.name].separated_by}")
         return (f"its {self.settles} is at its lower bound {self.value(self.settles, 'log', lo):.3g}: the change is "
-                f"over within the "
-                f"first few reversals, and a step between the session's first experiment and the next (other "
+                f"over within the first few reversals, and a step between the session's first experiment and the next (other "
                 f"strokes, other speeds) would look the same. To tell: {EFFECTS[self.name].separated_by}")
 
 
@@ -1760,7 +1758,6 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
                          np.full(NC, c), [f[3] for t in terms for f in t.free]])
     u0 = np.concatenate([np.zeros(nb), prior_u]) if start is None else np.asarray(start, float)
     u0 = np.clip(u0, lo + 1e-9, hi - 1e-9)
-
     sol = least_squares(resid, u0, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=1e-3,
                         max_nfev=max_nfev if engine.c.space == "friction" else 15, **engine.loss())
     g, kk, p, entries = unpack(sol.x)

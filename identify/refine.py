@@ -232,8 +232,8 @@ def _level_residuals(p, levels):
     return (levels.friction - stribeck_curve(p, levels.velocity)) / np.sqrt(levels.variance)
 
 
-REFINED_TOP_MAX = 10.0  # … and at most this multiple of it (beyond, a segment ran off where no force bounds it)
 REFINED_TOP_MIN = 0.5  # the refined F_d's top must keep at least this fraction of the maximum-likelihood one
+REFINED_TOP_MAX = 10.0  # … and reach at most this multiple of it (beyond, a segment ran off where no force bounds it)
 
 
 PINNED = 1e-3  # a refined parameter within this fraction of its range's end is at that end

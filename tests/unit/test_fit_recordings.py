@@ -637,3 +637,19 @@ def test_a_refinement_is_kept_on_the_cost_it_minimised_not_against_a_plain_one()
     better = {"x": 0.5}
     assert not _lowered_enough(unchanged, r0, better, {"x": 1.0}, "soft_l1")
     assert _lowered_enough(SimpleNamespace(cost=0.8 * unchanged.cost), r0, better, {"x": 1.0}, "soft_l1")
+
+
+def test_a_refined_curve_that_runs_off_is_declined():
+    # robot joint 3010 of the hidden-effect suite: the output-error refinement drives a segment
+    # of F_d the simulated stretches barely reach to 1.5·10¹⁴ N·m, finite, which no force of the
+    # record bounds. Declined (the maximum-likelihood curve kept), and said so; the curve written
+    # stays within ten times the record's largest friction, F_s.
+    from synth.hidden import SUITE_RATE, make_case, to_recording
+
+    df, _, _ = make_case("robot_joint", 3010, ("normal_load",), rate=SUITE_RATE["robot_joint"])
+    res = fit_recordings([to_recording(df, "3010.csv")])
+    p = res.params
+    fs = max(abs(p.stribeck.positive.Fs), abs(p.stribeck.negative.Fs))
+    assert np.all(np.isfinite(p.transition_curve.F)) and max(p.transition_curve.F) < 10.0 * fs, p.transition_curve
+    if not res.refinement["done"]:
+        assert "kept the Markov and maximum-likelihood estimates" in res.refinement["reason"], res.refinement
