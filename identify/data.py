@@ -277,13 +277,11 @@ def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
 def _read_table(path: Path, text: str) -> pd.DataFrame:
     """Guess the separator from the header (the first line that is not a ``#`` comment):
     tab, semicolon (European CSV: then a comma is the decimal mark), comma, or whitespace."""
-    from .io import sniff  # the one guess, shared with the reader of files
+    from .io import csv_options, sniff  # the one guess and the one reading, shared with the reader of files
 
     sep, decimal = sniff(text.splitlines())
     try:
-        df = pd.read_csv(io.StringIO(text), sep=sep, engine="c" if sep != r"\s+" else "python", comment="#",
-                         skip_blank_lines=True, decimal=decimal,
-                         **({"low_memory": False} if sep != r"\s+" else {}))  # (as ``io.read_table_file``)
+        df = pd.read_csv(io.StringIO(text), **csv_options(sep, decimal))
         df.attrs["decimal"] = decimal
         return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:

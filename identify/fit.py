@@ -463,8 +463,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     say(0.4, "finding presliding branches")
     datasets = []
     short = []  # (crossing range, resolution) of recordings whose reversals resolve no presliding
-    steady = levels.steady().velocity
-    slow = np.min(np.abs(steady)) if len(steady) else np.inf
+    slow = levels.slowest_steady_speed()
     for pr, sweep in zip(preps, swept):
         # presliding ends where gross sliding begins: below the slowest level; without levels
         # only the 97 % of D cut (F_s from the starting file) bounds the branches

@@ -192,6 +192,16 @@ def file_line_of_row(path: Path, index: int) -> int | None:
         return line_of_row(f, index)
 
 
+def csv_options(sep: str, decimal: str) -> dict:
+    """``pandas.read_csv``'s options for a table ``sniff`` read as ``sep``, ``decimal``: the
+    reader of files and of text alike. low_memory off: a column is typed once, over the whole
+    file (chunk by chunk, a word in one chunk made pandas warn of mixed types on the console,
+    before the one-line error that names it); the python engine of whitespace has no such option."""
+    c = sep != r"\s+"
+    return dict(sep=sep, engine="c" if c else "python", comment="#", skip_blank_lines=True, decimal=decimal,
+                **({"low_memory": False} if c else {}))
+
+
 def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
     import pandas as pd
 
@@ -202,10 +212,7 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
     if len(text) == SNIFF_BYTES and len(lines) > 1:
         lines = lines[:-1]  # the last line of the block may be cut
     sep, decimal = sniff(lines)
-    # low_memory off: a column is typed once, over the whole file (chunk by chunk, a word in one
-    # chunk made pandas warn of mixed types on the console, before the one-line error that names it)
-    opts = dict(sep=sep, engine="c" if sep != r"\s+" else "python", comment="#", skip_blank_lines=True,
-                decimal=decimal, **({"low_memory": False} if sep != r"\s+" else {}))
+    opts = csv_options(sep, decimal)
 
     def read(enc):
         if usecols is None:

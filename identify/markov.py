@@ -53,6 +53,12 @@ class Levels:
         count a sweep's speeds and scale σ1 (a trended run is a point of S(v) alone)."""
         return self if self.trended is None else self.kept(~self.trended)
 
+    def slowest_steady_speed(self) -> float:
+        """|v| of the slowest settled level (``steady``): where presliding ends and σ1's data
+        scale is taken; inf without one."""
+        v = self.steady().velocity
+        return float(np.min(np.abs(v))) if len(v) else np.inf
+
     @classmethod
     def joined(cls, parts: list) -> "Levels":
         """Levels of several sets together (times only where every part has them), their

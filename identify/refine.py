@@ -280,11 +280,11 @@ def sigma1_start(res) -> float | None:
 def sigma1_at_data_scale(stribeck: Stribeck, levels) -> float | None:
     """σ1 at the data's scale: a damping force of 0.1 % of the Coulomb level at the slowest
     level's speed (None without levels)."""
-    steady = None if levels is None else levels.steady().velocity
-    if steady is None or not len(steady):
+    slow = np.inf if levels is None else levels.slowest_steady_speed()
+    if not np.isfinite(slow):
         return None
     fc = max(abs(stribeck.positive.Fc), abs(stribeck.negative.Fc))
-    return 1e-3 * fc / float(np.min(np.abs(steady)))
+    return 1e-3 * fc / slow
 
 
 STUCK_DAMPING_RATIO = 0.3  # ζ of the stuck plant that a held σ1 gives (``sigma1_at_damping_ratio``)
@@ -323,8 +323,7 @@ def _lowered_enough(fit, r0: np.ndarray, after: dict, before: dict, loss: str) -
 def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     tc = res.params.transition_curve
     z1 = float(tc.z[1]) if tc.kind == "piecewise_linear" and len(tc.z) > 1 else np.inf
-    steady = res.levels.steady().velocity if res.levels is not None else np.zeros(0)
-    v_slide = 0.3 * float(np.min(np.abs(steady))) if len(steady) else np.inf
+    v_slide = 0.3 * res.levels.slowest_steady_speed() if res.levels is not None else np.inf
     ends = {}
     for d in res.datasets:
         for b in d.branches:
