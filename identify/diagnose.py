@@ -1662,6 +1662,19 @@ INERTIA_ABSENT = 0.05  # friction following the acceleration as if I were under 
 BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
 
 
+def base_off_verdict(rms_base_refit: float, noise: float, candidates) -> str:
+    """What is said of a base that is off with nothing named (``Diagnosis.base_off``). Where the
+    base refitted alone comes within BASE_OFF_NOISE noise floors, the base, not a missing effect,
+    is what is off. Where it still leaves more, that rest is neither: no candidate took it up, and
+    a time variation or a force the library has no candidate for (a friction cycling with the
+    temperature, gravity on a joint) would leave the same."""
+    if noise > 0 and rms_base_refit > BASE_OFF_NOISE * noise:
+        return (f"the base is off, and what it leaves refitted alone ({rms_base_refit / noise:.1f} × the noise floor) "
+                f"no candidate takes up: a contact this model's base cannot follow, or an effect outside the "
+                f"candidates ({', '.join(candidates)})")
+    return "the base, not a missing effect, is what is off"
+
+
 def _at_range_end(x: float, ends) -> bool:
     """Whether a value a refit ranges on a log scale ended at one of its range's ``ends``."""
     ends = [e for e in ends if e > 0]
@@ -2348,7 +2361,10 @@ class Diagnosis:
             L.append("No missing effect named: what improves the held-out prediction does not improve it where its "
                      "physics must show.")
         else:
-            L.append("No missing effect named: nothing improves the held-out prediction in most folds.")
+            # both halves of the rule (``Evidence.gains_held_out``): a candidate better in most folds
+            # can still be worse pooled, where one fold's prediction runs far off
+            L.append(f"No missing effect named: nothing improves the held-out prediction both in most folds and by "
+                     f"≥ {100 * self.settings.min_gain:.0f} % pooled.")
         for c, why in self.seen_not_named():
             L.append(f"Seen, not named: {c['name']} improves the held-out prediction by {100 * c['heldout_gain']:.1f} % "
                      f"(folds {c['folds_improved']}/{c['folds_informative']}), but {why}"
@@ -3188,7 +3204,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         fitted_here = made_by is not None
         cmp_.notes.append(f"nothing named, so the model written is the one given, which leaves {rms0:.4g}; the "
                           f"base refitted alone (the alternative) leaves {rms_alt:.4g} — "
-                          f"the base, not a missing effect, is what is off: "
+                          + base_off_verdict(rms_alt, cmp_.noise, s.candidates) + ": "
                           + (f"the {made_by} of {name} that made the file holds or misses what the refit moves "
                              f"(see its held parameters, and the refit's values above)" if fitted_here else
                              "fit it to this recording (`leuven-friction fit`) or give --params closer to it")

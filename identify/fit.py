@@ -93,8 +93,9 @@ def misfit_in_time(levels: Levels, fit, sign: int) -> str:
         return ""
     rho_v = spearmanr(t, np.abs(v))[0]
     return (f"; the misfit follows the time the levels were run in (Spearman ρ {rho:+.2f} between their times and "
-            f"their friction above the curve, over {int(m.sum())} levels, p = {p:.2g}): the friction logged changed "
-            f"during the session (a warm-up, a wear-in, a load, a force sensor's drifting offset), which no S(v) holds"
+            f"their friction above the curve, over {int(m.sum())} levels, p = {p:.2g}): the force logged changed "
+            f"during the session, by the contact (a warm-up, a wear-in, a load) or by the sensor (a drifting offset: "
+            f"a slow noise of the force does it alone), which no S(v) holds"
             + (f" — here the levels were run in order of speed (ρ {rho_v:+.2f}), so a form that misfits their "
                f"speeds trends with time as well" if abs(rho_v) >= 0.8 else "")
             + "; `diagnose` tests a drift in time")
@@ -538,6 +539,15 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in flat)} not resolved "
                          f"by the data (flat segment): dropped")
             z = np.delete(z, flat)
+            tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+        loose = list(tfit.loose)
+        if loose and knots is None and len(z) - len(loose) >= 2:
+            # a rise the branches leave undetermined is not written as an estimate: its knot is
+            # dropped (a last one ends the curve at the knot before it) and the curve refitted
+            notes.append(f"transition curve: the rise to knot(s) at z = "
+                         f"{', '.join(f'{z[i]:.3g} (F_d {tfit.F[i]:.3g} ± {tfit.stderr[i]:.2g})' for i in loose)} "
+                         f"is not determined by the branches (σ over half of it): dropped")
+            z = np.delete(z, loose)
             tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
     if tfit is not None and tfit.unbounded:
         # the likelihood pushed a segment to the limit of 20× the largest force change of any

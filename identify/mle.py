@@ -17,6 +17,7 @@ covariance is the inverse of the Hessian of the negative log-likelihood at the o
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -125,6 +126,19 @@ class TransitionFit:
     unbounded: tuple = ()  # … at its upper bound: the data do not bound F_d there (not an estimate)
     chi2: float = 0.0  # Σ r² over the branches with Gaussian noise (quantised readings have no χ²)
     dof: int = 0  # … their samples less the parameters they share and their own offsets
+
+    @property
+    def loose(self) -> tuple:
+        """Knots i whose rise F_i − F_(i−1) has a σ over half its size: the branches do not
+        determine that segment (the rule a Stribeck δ is held by, applied to a rise). A
+        presliding branch that runs on past what eq. (5) holds — a lost motion, a backlash taken
+        up — ends in such a segment, a last knot shooting up."""
+        C, out = self.covariance, []
+        for i in range(1, len(self.F)):
+            var = C[i - 1, i - 1] + (C[i - 2, i - 2] - 2.0 * C[i - 1, i - 2] if i >= 2 else 0.0)
+            if np.isfinite(var) and var > 0.0 and math.sqrt(var) > 0.5 * (self.F[i] - self.F[i - 1]):
+                out.append(i)
+        return tuple(out)
 
 
 def eq5_factor_integral(F, D: float, n: float):

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import viser
 
+from ...identify.diagnose import base_off_verdict
 from ...model.effects import EFFECTS, format_values
 from ...model.errors import FrictionError
 from .. import plots
@@ -163,8 +164,8 @@ def status_line(d) -> str:
         return f"Found **{', '.join(d.named_labels())}**: see the proposal." + (f" Also: {'; '.join(others)}." if others else "")
     gap = (f"the model leaves {d.rms_before:.3g}, {d.rms_before / d.noise:.1f} × the noise floor" if d.noise > 0
            else f"the model leaves {d.rms_before:.3g}")
-    base = (f"; the base, not a missing effect, is what is off (refitted alone it leaves {d.rms_base_refit:.3g}): "
-            f"fit it to this recording" if d.base_off else "")
+    base = (f"; {base_off_verdict(d.rms_base_refit, d.noise, d.settings.candidates)} (refitted alone it leaves "
+            f"{d.rms_base_refit:.3g}): fit it to this recording" if d.base_off else "")
     if others:
         return f"Nothing named: {'; '.join(others)}. {gap[0].upper()}{gap[1:]}{base} (the Diagnose tab has the evidence)."
     return f"No missing effect named (nothing proposed): {gap}{base}."
