@@ -4,14 +4,16 @@ Written from the README alone, numpy only, as a new user would, for a trial of `
 `diagnose` on effects the library has no candidate for; kept so that trial runs again
 (``tests/slow/test_diagnose_joint_outside.py``). Nothing from leuven-friction is imported.
 
-    python -m synth.joint_outside CASE SEED OUT.csv      # CASE in A B C D E
+    python -m synth.joint_outside CASE SEED OUT.csv      # CASE in A B C D E F G
 
 A 4-element Maxwell-slip contact (slip limits following a Stribeck curve) plus viscous friction,
 integrated by semi-implicit Euler at 10 kHz, controlled and logged at 1 kHz: open-loop torque
 ramps, small sine moves, then 15 speeds in shuffled order, each both ways.
 A control; B an additive gravity torque mgl·sin(q + φ0); C friction × (1 + 0.2 sin(2πt/T));
 D a backlash between the motor-side encoder and the load-side contact;
-E friction × (1 + 0.25 (1 − e^(−t/30 s))).
+E friction × (1 + 0.25 (1 − e^(−t/30 s)));
+F a cogging torque 0.12·sin(36q + 0.3) N·m added (a force along the travel, not friction);
+G friction × (1 + 0.05 sin(36q + 0.3)) (a friction ripple, for comparison with F).
 Logged: t [s], q [deg] (motor-side encoder, 2^19 counts per turn), tau [N*m] (commanded torque + noise).
 """
 import sys
@@ -31,6 +33,9 @@ QSTEP = 2 * math.pi / CNT                                     # encoder step, ra
 BACKLASH = 300 * QSTEP                                        # case D: total dead zone (300 counts)
 MGL, PHI0 = 0.9, 0.5                                          # case B
 T_CYC = 55.0                                                  # case C period (s)
+COG_N, COG_PHI = 36, 0.3                                      # cases F, G: 36 periods per turn
+COG_A = 0.12                                                  # case F: cogging torque amplitude, N*m
+RIP_A = 0.05                                                  # case G: friction ripple, relative
 DT_LOG, NSUB = 1e-3, 10
 
 
@@ -185,8 +190,9 @@ def simulate(case, seed):
         else:
             g = 1.0
         for _ in range(NSUB):
-            s = stribeck(v) * g
-            F = SIG2 * g * v
+            gg = g * (1 + RIP_A * math.sin(COG_N * x + COG_PHI)) if case == "G" else g
+            s = stribeck(v) * gg
+            F = SIG2 * gg * v
             for i in range(4):
                 lim = ALPHA[i] * s
                 fi = KEL[i] * z[i]
@@ -213,7 +219,8 @@ def simulate(case, seed):
                 xm += vm * dt
                 x += v * dt
             else:
-                grav = MGL * math.sin(x + PHI0) if case == "B" else 0.0
+                grav = (MGL * math.sin(x + PHI0) if case == "B" else
+                        COG_A * math.sin(COG_N * x + COG_PHI) if case == "F" else 0.0)
                 v += (u - F - grav) / J * dt
                 x += v * dt
             for i in range(4):

@@ -3,7 +3,8 @@ diagnosis has no candidate for (``synth/joint_outside.py``: a four-element Maxwe
 under a Stribeck limit, semi-implicit Euler at 10 kHz, a position/PI loop at 1 kHz, a 2¹⁹-count
 encoder in degrees, the commanded torque with white and AR(1) noise; 115,889 samples, friction
 not logged). What is asked of the tool there is not to name a friction effect for what is not
-one, and to say that what is left is outside its candidates. Every expectation is the
+one, and to say that what is left is outside its candidates (beside a friction ripple of the
+cogging's period, which it must name). Every expectation is the
 simulator's own constant, not a number the tool printed."""
 
 import json
@@ -28,9 +29,11 @@ def _run(tmp_path, case):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("case", ["A", "B"])
-def test_a_control_and_a_gravity_torque_name_no_friction_effect(tmp_path, case):
-    # B adds 0.9·sin(q + 0.5) N·m of gravity over ±1.4 rad: a torque, not a friction effect
+@pytest.mark.parametrize("case", ["A", "B", "F"])
+def test_a_control_a_gravity_torque_and_cogging_name_no_friction_effect(tmp_path, case):
+    # B adds 0.9·sin(q + 0.5) N·m of gravity over ±1.4 rad, F a cogging torque of 0.12 N·m
+    # over 36 periods a turn: forces along the travel, not friction effects (a friction ripple
+    # changes sign with the motion, an added force does not)
     _, rep = _run(tmp_path, case)
     assert rep["effects"] == [] and not rep["confounded"], rep["effects"]
 
@@ -63,3 +66,14 @@ def test_a_warm_up_is_named_a_rising_drift(tmp_path):
     _, rep = _run(tmp_path, "E")
     assert rep["effects"] == ["time_drift"], rep["effects"]
     assert rep["effect_params"]["b"] > 0, rep["effect_params"]
+
+
+@pytest.mark.slow
+def test_a_friction_ripple_of_the_cogging_period_is_named_with_its_wavelength(tmp_path):
+    # G: the same 36 periods a turn as F's cogging, but scaling friction (5 %): named a ripple
+    _, rep = _run(tmp_path, "G")
+    assert rep["effects"] == ["position_ripple"], rep["effects"]
+    p, sd = rep["effect_params"], rep["steps"][2]["sd"]
+    lam = 2 * np.pi / J.COG_N
+    assert abs(p["wavelength"] - lam) < 3 * sd["wavelength"] + 0.01 * lam, (p, sd)
+    assert abs(p["a"] - J.RIP_A) < 3 * sd["a"] + 0.2 * J.RIP_A, (p, sd)
