@@ -517,6 +517,32 @@ def diagnosis_residual_figures(d) -> list:
     return figs
 
 
+def diagnosis_travel_force_figure(d) -> go.Figure:
+    """A force along the travel (``Diagnosis.travel_force``): the residual the base refitted
+    alone leaves in the sliding, folded over the period and averaged, moving up and moving down,
+    beside the part that keeps its sign both ways. A friction ripple's two directions mirror each
+    other; an added force's lie on one another."""
+    tf = d.travel_force
+    what, unit = _diag_unit(d)
+    pu = d.params_before.units.get("position", "")
+    bins = len(tf.up)
+    x = (np.arange(bins) + 0.5) * tf.wavelength / bins
+    fine = np.linspace(0.0, tf.wavelength, 200)
+
+    def gaps(means):  # an empty bin (None) is a gap in the line
+        return [np.nan if m is None else m for m in means]
+
+    fig = _Fig()
+    fig.add_trace(_scatter(x, gaps(tf.up), mode="markers+lines", name="moving up", marker=dict(color=COLORS[0])))
+    fig.add_trace(_scatter(x, gaps(tf.down), mode="markers+lines", name="moving down", marker=dict(color=COLORS[1])))
+    fig.add_trace(_scatter(fine, tf.amplitude * np.sin(2 * np.pi * fine / tf.wavelength + tf.phase), mode="lines",
+                           name=f"keeps its sign both ways: {tf.amplitude:.3g} ± {tf.sd:.2g}",
+                           line=dict(color="#444444", dash="dash")))
+    return _layout(fig, f"A force along the travel: residual folded over {tf.wavelength:.4g} {pu}",
+                   f"position within the period ({_shown(pu)})" if pu else "position within the period",
+                   f"measured − model ({unit})")
+
+
 def diagnosis_cv_figure(d) -> go.Figure:
     """Out-of-sample evidence of the last round's candidates: pooled held-out RMS gain and the
     share of informative folds improved."""
@@ -537,4 +563,5 @@ def diagnosis_cv_figure(d) -> go.Figure:
 
 def diagnosis_report_figures(d) -> list:
     return [diagnosis_steps_figure(d), diagnosis_signal_figure(d), *diagnosis_residual_figures(d),
+            *([diagnosis_travel_force_figure(d)] if getattr(d, "travel_force", None) is not None else []),
             diagnosis_cv_figure(d)]

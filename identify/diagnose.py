@@ -74,7 +74,7 @@ from time import perf_counter
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, minimize_scalar
 from scipy.ndimage import uniform_filter1d
 from scipy.signal import savgol_filter
 from scipy.stats import rankdata
@@ -1783,10 +1783,13 @@ def engine_params_for_scale(cmp_: Comparison) -> FrictionParams:
     return cmp_.params
 
 
-def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, lam_min: float, count: int = 3) -> list:
+def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, lam_min: float, count: int = 3,
+                        keep: np.ndarray | None = None) -> list:
     """Wavelengths of the strongest peaks in the spectrum of the relative residual against
-    position (sliding samples, binned on a uniform position grid)."""
+    position (sliding samples, binned on a uniform position grid; only ``keep``'s, where given)."""
     moving = np.abs(cmp_.velocity) > cmp_.v_rest
+    if keep is not None:
+        moving = moving & keep
     if cmp_.space == "friction":
         ok = moving & (np.abs(base) > 0.2 * np.max(np.abs(base)))
         y = resid[ok] / base[ok]
@@ -1840,6 +1843,139 @@ def _ripple_wavelengths(cmp_: Comparison, resid: np.ndarray, base: np.ndarray, l
         out.append(nb * dxb / (i + di))
         sp[max(i - 2, 0):i + 3] = 0.0
     return out
+
+
+TRAVEL_FORCE_SIGMAS = 5.0  # a force along the travel is said only this many block-jackknife σ clear of none
+TRAVEL_FORCE_BLOCKS = 10  # contiguous blocks of the sliding samples its σ is taken over (their errors are not white)
+TRAVEL_FORCE_BINS = 24  # bins of one period the residual is folded into (``TravelForce.up``, ``.down``)
+# the share of the sliding residual's RMS it must take out, as a candidate must gain held out
+# (``Settings.min_gain``'s default): a tribometer of the suite read 8.6 σ at a third of its
+# noise floor, most of it at its slowest speed, taking out 0.03 % of what the base refitted
+# alone left there
+TRAVEL_FORCE_MIN_GAIN = 0.03
+
+
+@dataclass
+class TravelForce:
+    """A force periodic along the travel that keeps its sign whichever way the motion goes
+    (``travel_force``): amplitudes in the force's units, the wavelength in the position's."""
+    wavelength: float
+    amplitude: float  # of the part that keeps its sign both ways
+    sd: float  # its σ, jackknifed over TRAVEL_FORCE_BLOCKS blocks of the sliding
+    following: float  # amplitude of the part that follows the motion's sign, as a friction ripple does
+    phase: float  # the part keeping its sign is amplitude·sin(2π·x/wavelength + phase)
+    # the residual folded over one period, TRAVEL_FORCE_BINS bins of position within it: its mean
+    # in each bin moving up and moving down (None where a bin has no sample), the evidence to look at
+    up: tuple = ()
+    down: tuple = ()
+    # the part keeping its sign in the slower and in the faster half of the sliding, each as
+    # (amplitude, σ per component), and how far the two lie apart, with that difference's σ
+    halves: tuple = ()
+    speed_gap: float = 0.0
+    speed_gap_sd: float = 0.0
+    gain: float = 0.0  # the share of the sliding residual's RMS it takes out (each run's own offset out first)
+
+    @property
+    def shown(self) -> bool:
+        """Clear of none by TRAVEL_FORCE_SIGMAS σ, twice the part following the motion, seen at
+        both halves of the speeds alike (each by 3 σ, the two within 3 σ of each other), and
+        taking out TRAVEL_FORCE_MIN_GAIN of the sliding residual's RMS."""
+        return bool(self.amplitude > TRAVEL_FORCE_SIGMAS * self.sd and self.amplitude > 2.0 * self.following
+                    and all(a > 3.0 * s for a, s in self.halves) and self.speed_gap < 3.0 * self.speed_gap_sd
+                    and self.gain >= TRAVEL_FORCE_MIN_GAIN)
+
+
+def travel_force(cmp_: Comparison, resid: np.ndarray, mask: np.ndarray, lam_min: float) -> TravelForce | None:
+    """The part of the residual periodic along the travel that keeps its sign both ways, or
+    None. Friction opposes the motion, so a ripple of it (``position_ripple``, a factor on F)
+    changes sign with the direction; a force along the travel — a motor's cogging, gravity on a
+    joint, a spring or a cable — does not, and no friction effect holds it. At the strongest
+    wavelength of the residual against position in the sliding, each direction is fitted as an
+    offset per run + A_d·sin θ + B_d·cos θ: the half-sum of the two directions' (A, B) is the
+    force that keeps its sign, the half-difference the part that follows the motion."""
+    if cmp_.space != "friction":
+        return None
+    v = cmp_.velocity
+    sliding = mask & (np.abs(v) > cmp_.v_rest)
+    idx = np.flatnonzero(sliding)
+    up = v[idx] > 0
+    if len(idx) < 20 * TRAVEL_FORCE_BLOCKS or up.sum() < 10 * TRAVEL_FORCE_BLOCKS or (~up).sum() < 10 * TRAVEL_FORCE_BLOCKS:
+        return None
+    # each run (contiguous sliding one way) has an offset of its own — S(v)'s misfit at its speed,
+    # a drift — taken out of the residual and of the columns alike (the least squares with an
+    # offset per run, by Frisch–Waugh–Lovell): a slow run shorter than a period had leaked its
+    # level into the wave (a linear-motor stage made apart, its cogging read 0.76 N slow, 1.10 fast)
+    run = np.cumsum(np.concatenate([[True], (np.diff(idx) != 1) | (up[1:] != up[:-1])])) - 1
+    count = np.bincount(run)
+
+    def within(col):
+        return col - (np.bincount(run, col) / count)[run]
+
+    x, y = cmp_.path[idx], within(resid[idx])
+    spread = np.zeros_like(resid)
+    spread[idx] = y
+    lams = _ripple_wavelengths(cmp_, spread, np.ones_like(resid), lam_min, 1, keep=sliding)
+    if not lams:
+        return None
+    u, d = up.astype(float), (~up).astype(float)
+
+    def columns(lam):
+        th = 2.0 * math.pi * x / lam
+        sn, cs = np.sin(th), np.cos(th)
+        return np.column_stack([within(u * sn), within(u * cs), within(d * sn), within(d * cs)])
+
+    def rss(lam):
+        A = columns(lam)
+        return float(np.sum((y - A @ np.linalg.lstsq(A, y, rcond=None)[0]) ** 2))
+
+    # the spectrum's peak is read to within a bin; the least squares places it (±3 %, a bin
+    # being a period less over the range, at least 3 periods a range)
+    lam = float(minimize_scalar(rss, bounds=(0.97 * lams[0], 1.03 * lams[0]), method="bounded",
+                                options={"xatol": 1e-5 * lams[0]}).x)
+    X = columns(lam)
+
+    def parts(rows):
+        c = np.linalg.lstsq(X[rows], y[rows], rcond=None)[0]
+        return 0.5 * (c[0:2] + c[2:4]), 0.5 * (c[0:2] - c[2:4])
+
+    def keeping(rows):
+        """The part keeping its sign on ``rows`` (a boolean mask of the sliding samples), and its
+        σ per component, jackknifed over TRAVEL_FORCE_BLOCKS contiguous blocks of them."""
+        at = np.flatnonzero(rows)
+        if min((rows & up).sum(), (rows & ~up).sum()) < 10 * TRAVEL_FORCE_BLOCKS:
+            return np.full(2, np.nan), math.inf  # one way too few to say (not shown)
+        block = np.full(len(idx), -1)
+        block[at] = np.minimum(np.arange(len(at)) * TRAVEL_FORCE_BLOCKS // len(at), TRAVEL_FORCE_BLOCKS - 1)
+        jack = np.array([parts(rows & (block != b))[0] for b in range(TRAVEL_FORCE_BLOCKS)])
+        nb = TRAVEL_FORCE_BLOCKS
+        return parts(rows)[0], math.sqrt((nb - 1) / nb * np.sum((jack - jack.mean(axis=0)) ** 2) / 2.0)
+
+    everywhere = np.ones(len(idx), dtype=bool)
+    keeps, follows = parts(everywhere)
+    _, sd = keeping(everywhere)
+    # a force along the travel is the same at every speed; a disturbance periodic in time (a
+    # limit cycle, a hum) reads as one along the travel only at one speed, its period in
+    # position the speed's multiple: the slower and the faster half of the sliding must both
+    # show it, and agree
+    speed = np.abs(v[idx])
+    slow = speed < np.median(speed)
+    (ks, ss), (kf, sf) = keeping(slow), keeping(~slow)
+    th = 2.0 * math.pi * x / lam
+    wave = within(keeps[0] * np.sin(th) + keeps[1] * np.cos(th))
+    gain = 1.0 - math.sqrt(np.mean((y - wave) ** 2) / max(np.mean(y ** 2), 1e-300))
+    frac = np.mod(x / lam, 1.0)
+    k = np.minimum((frac * TRAVEL_FORCE_BINS).astype(int), TRAVEL_FORCE_BINS - 1)
+
+    def folded(rows):
+        n = np.bincount(k[rows], minlength=TRAVEL_FORCE_BINS)
+        tot = np.bincount(k[rows], y[rows], minlength=TRAVEL_FORCE_BINS)
+        mean = np.where(n > 0, tot / np.maximum(n, 1), np.nan)
+        return tuple(float(m) if np.isfinite(m) else None for m in mean - np.nanmean(mean))  # (None: JSON's null)
+
+    return TravelForce(lam, float(np.hypot(*keeps)), sd, float(np.hypot(*follows)),
+                       float(math.atan2(keeps[1], keeps[0])), folded(up), folded(~up),
+                       ((float(np.hypot(*ks)), ss), (float(np.hypot(*kf)), sf)), float(np.hypot(*(ks - kf))),
+                       math.hypot(ss, sf), float(gain))
 
 
 def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, base: np.ndarray) -> list:
@@ -2251,6 +2387,8 @@ class Diagnosis:
     # nothing named, and the base refitted alone leaves clearly less than the model as given
     # (over BASE_OFF_NOISE noise floors): the base, not a missing effect, is what is off
     base_off: bool = False
+    # a force periodic along the travel that keeps its sign both ways (``travel_force``), where shown
+    travel_force: TravelForce | None = None
 
     # the first named effect, for callers that show one
     @property
@@ -2302,7 +2440,9 @@ class Diagnosis:
                 + [f"{c['name']} seen, not named (it gains held out, but not in {c['not_where_it_shows']})"
                    for c in self.elsewhere]
                 + [f"{c['effects'][0]} and {c['effects'][1]} confounded" for c in self.confounded]
-                + [f"{c['name']} passed, not named (the model written does not use it)" for c in self.unused])
+                + [f"{c['name']} passed, not named (the model written does not use it)" for c in self.unused]
+                + ([f"a force along the travel, not a friction effect (period {self.travel_force.wavelength:.3g}, "
+                    f"amplitude {self.travel_force.amplitude:.3g})"] if self.travel_force is not None else []))
 
     @property
     def effect_params(self) -> dict | None:
@@ -2335,6 +2475,7 @@ class Diagnosis:
             "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
             "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
             "base_off": self.base_off,
+            "travel_force": None if self.travel_force is None else asdict(self.travel_force),
             "elsewhere": [c["name"] for c in self.elsewhere], "written_effects": self.written_effects(),
             "candidates": self.candidates, "notes": list(self.notes),
             "work": None if self.work is None else asdict(self.work),
@@ -2346,6 +2487,7 @@ class Diagnosis:
 
     def text(self) -> str:
         u = self.params_before.units.get("force" if self.space == "friction" else "position", "")
+        pu = self.params_before.units.get("position", "")
         L = []
         if self.effects:
             L.append("Missing effects named (out-of-sample evidence): " + ", ".join(self.named_labels()))
@@ -2370,6 +2512,11 @@ class Diagnosis:
                      f"(folds {c['folds_improved']}/{c['folds_informative']}), but {why}"
                      + (": what it takes up lies elsewhere, and may be another effect's or the base's." if c.get("elsewhere")
                         else "."))
+        if self.travel_force is not None:
+            tf = self.travel_force
+            L.append(f"Seen, not a friction effect: a force along the travel, of period {tf.wavelength:.4g} {pu} and "
+                     f"amplitude {tf.amplitude:.3g} ± {tf.sd:.2g} {u}, keeps its sign whichever way the motion goes "
+                     f"(cogging, gravity, a spring or a cable; notes).")
         for c in self.unused:
             L.append(f"Passed, not named: {c['name']} improved the held-out prediction beside a free steady curve, but "
                      f"in the model written (n, σ1 and S(v) refitted with it) it removes only {100 * c['own_gain']:.1f} % "
@@ -3192,6 +3339,15 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     rebased = not named and s.refit_base
     after = final.pred if (named or rebased) else pred_given_c
     rms_alt = _rms((meas - null.pred)[allm])
+    # what the base refitted alone leaves along the travel that no friction effect holds
+    tf = travel_force(cmp_, meas - null.pred, allm, ripple_min_wavelength(cmp_))
+    if tf is not None and tf.shown:
+        pu, fu = params.units.get("position", ""), params.units.get("force", "")
+        cmp_.notes.append(f"a force along the travel: what the base refitted alone leaves in the sliding holds a "
+                          f"period of {tf.wavelength:.4g} {pu} of amplitude {tf.amplitude:.3g} ± {tf.sd:.2g} {fu} "
+                          f"that keeps its sign whichever way the motion goes (the part following the motion's "
+                          f"sign, as a friction ripple's does, {tf.following:.2g}): cogging, gravity, a spring or a "
+                          f"cable, not a friction effect — no candidate holds it; compensate it apart from friction")
     base_off = bool(not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0 and rms0 > BASE_OFF_NOISE * cmp_.noise)
     if base_off:
         # (a model within two noise floors is at the noise level, whatever a refit gains there)
@@ -3289,7 +3445,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      model_after=after, compared=allm, step_predictions=step_preds, scored_predictions=scored, explaining=explaining,
                      unused=unused, work=DiagnosisWork(perf_counter() - started, engine.sims, engine.sim_seconds),
                      reading={"window": int(cmp_.window), "v_rest": float(cmp_.v_rest),
-                              "min_excursion": float(cmp_.min_excursion)}, base_off=base_off)
+                              "min_excursion": float(cmp_.min_excursion)}, base_off=base_off,
+                     travel_force=tf if tf is not None and tf.shown else None)
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written

@@ -606,3 +606,36 @@ def test_the_same_machine_at_another_scale_gets_the_same_diagnosis(kind, seed, e
         assert pb["a"] == pytest.approx(pa["a"], rel=0.01)
     else:
         assert pb["tau"] / kt == pytest.approx(pa["tau"], rel=0.05) and pb["b"] == pytest.approx(pa["b"], rel=0.02)
+
+
+@pytest.mark.parametrize("how", ["added", "scaled", "none"])
+def test_a_force_along_the_travel_is_told_from_a_friction_ripple_by_its_sign(how):
+    # a tribometer's logged friction with 7.3 periods over its 0.5 mm stroke, 3 % of its
+    # friction: added to the force (a cogging: it keeps its sign whichever way the pin moves) or
+    # scaling the friction (a ripple: its sign follows the motion's, as friction's does). Only
+    # the first is a force along the travel, and it is said with its period and size
+    df, truth, case = make_case("tribometer", 4243, ())
+    x = df["Position [mm]"].to_numpy()
+    lam, amp = 0.5 / 7.3, 0.03 * 2.0e6  # mm, µN (the contact's friction is about 2 N)
+    wave = np.sin(2 * np.pi * x / lam + 0.4)
+    f = df["Friction [uN]"].to_numpy()
+    df["Friction [uN]"] = f + amp * wave if how == "added" else f * (1 + 0.03 * wave) if how == "scaled" else f
+    d = diagnose(to_recording(df, f"{how}.csv"), oracle_params(truth))
+    tf = d.travel_force
+    if how == "added":
+        assert tf is not None and "position_ripple" not in d.effects, (d.effects, d.text())
+        assert abs(tf.wavelength - lam * 1e-3) < 0.005 * lam * 1e-3, tf  # written in m
+        assert abs(tf.amplitude - amp * 1e-6) < 3 * tf.sd + 0.05 * amp * 1e-6, tf  # in N
+        assert "Seen, not a friction effect: a force along the travel" in d.text()
+        # the evidence to look at: the residual folded over the period lies on itself moving up and
+        # moving down, and the report's figures show it
+        up, down = (np.array([np.nan if m is None else m for m in p]) for p in (tf.up, tf.down))
+        ok = np.isfinite(up) & np.isfinite(down)
+        assert np.corrcoef(up[ok], down[ok])[0, 1] > 0.8, (tf.up, tf.down)
+        from leuven_friction.app import plots
+
+        titles = [f.layout.title.text for f in plots.diagnosis_report_figures(d)]
+        assert any(t.startswith("A force along the travel") for t in titles), titles
+    else:
+        assert tf is None, tf
+        assert d.effects == (["position_ripple"] if how == "scaled" else []), d.effects

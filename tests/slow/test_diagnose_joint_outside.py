@@ -36,6 +36,17 @@ def test_a_control_a_gravity_torque_and_cogging_name_no_friction_effect(tmp_path
     # changes sign with the motion, an added force does not)
     _, rep = _run(tmp_path, case)
     assert rep["effects"] == [] and not rep["confounded"], rep["effects"]
+    tf = rep["travel_force"]
+    if case == "F":
+        # and the cogging is said as the force along the travel it is, with its period and size
+        assert tf is not None, rep["notes"]
+        assert abs(tf["wavelength"] - 2 * np.pi / J.COG_N) < 0.01 * 2 * np.pi / J.COG_N, tf
+        assert abs(tf["amplitude"] - J.COG_A) < 3 * tf["sd"] + 0.1 * J.COG_A, tf
+        assert any(n.startswith("a force along the travel") for n in rep["notes"]), rep["notes"]
+    else:
+        # no period over the travel keeps its sign in both directions: none is said (B's gravity
+        # has one period in 2π rad, over a travel of 2.8 rad)
+        assert tf is None, tf
 
 
 @pytest.mark.slow
@@ -73,6 +84,7 @@ def test_a_friction_ripple_of_the_cogging_period_is_named_with_its_wavelength(tm
     # G: the same 36 periods a turn as F's cogging, but scaling friction (5 %): named a ripple
     _, rep = _run(tmp_path, "G")
     assert rep["effects"] == ["position_ripple"], rep["effects"]
+    assert rep["travel_force"] is None, rep["travel_force"]  # a friction ripple follows the motion's sign
     p, sd = rep["effect_params"], rep["steps"][2]["sd"]
     lam = 2 * np.pi / J.COG_N
     assert abs(p["wavelength"] - lam) < 3 * sd["wavelength"] + 0.01 * lam, (p, sd)
