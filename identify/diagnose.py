@@ -29,7 +29,8 @@ out-of-sample evidence, add it, refit, look again.
    may count as its reversal (``Settings.softening_thresholds``, 6 by default;
    ``softening_thresholds``, ``fit_candidate``) is screened, the SOFTENING_FITTED best fitted,
    the best of them written, and chosen again on the training blocks of every fold of the
-   cross-validation.
+   cross-validation. A drift and a load are judged twice, as eq. (3) scales them and with a
+   presliding range following them (``range_alternative``), and the one that passes is kept.
 4. **Out-of-sample decision.** Blocked cross-validation over time: the record is cut into
    ``folds·blocks_per_fold`` contiguous blocks, dealt round-robin to ``folds`` folds; the
    alternative and each candidate are refitted on the other folds and scored on the held-out
@@ -40,7 +41,8 @@ out-of-sample evidence, add it, refit, look again.
    samples is reported as a second line. A candidate whose saturation scale ends at either
    bound (a softening's n_c: at most half the reversals where the strokes run in order of
    speed, all of them elsewhere, ``softening_nc_max``) has not been seen to settle within the
-   session: it is listed as
+   session, nor is a drift whose τ ends at either bound or whose b ends at a bound (a step
+   at the session's start, a straight trend): it is listed as
    seen, not named (``Term.unsettled``; ``Settings.must_settle``, the default: over the
    hidden-effect suite on two seed sets, with the oracle and the fitted base, naming it put a
    false softening on 15 of 80 controls, requiring it on 2). Where the strokes' speeds do not
@@ -106,6 +108,7 @@ class Settings:
     free_steady: bool = True  # the alternative holds a free correction to S(v) (FreeSteadyCurve)
     rate_nuisance: bool = True  # a stiffness effect is judged beside a stiffness varying with speed (stiffness_alternative)
     range_nuisance: bool = True  # … and, beside a friction effect, a presliding range following it (stiffness_alternative)
+    range_with_friction: bool = True  # a drift or a load is judged also with a presliding range following it (range_alternative)
     refit_curve: bool = True  # the alternative reshapes a piecewise-linear F_d segment by segment (refit_transition)
     space: str = "friction"  # "position": a force-driven recording compared by output error in position
     must_settle: bool = True  # an effect with a saturation scale is named only if seen to settle (``Term.unsettled``)
@@ -969,9 +972,27 @@ class Term:
         within the first few reversals, and a step between the session's first experiment and
         the next would look the same — or None."""
         where = self.bound(u)
+        if self.settles == "tau" and where is None:
+            # a drift whose b ends at a bound of its range (friction falling by 90 %, rising five
+            # times, once settled) is a straight trend extrapolated: its bend is not seen either
+            j = [f[0] for f in self.free].index("b")
+            blo, bhi = self.free[j][2:4]
+            if min(u[j] - blo, bhi - u[j]) <= BOUND_TOL * (bhi - blo):
+                return (f"its b is at a bound of its range ({u[j]:.3g}): the change is a straight trend in time, its "
+                        f"bend towards a settled value not seen, and a trend along the session's schedule would look "
+                        f"the same. To tell: {EFFECTS[self.name].separated_by}")
         if where is None:
             return None
         lo, hi = next(f[2:4] for f in self.free if f[0] == self.settles)
+        if self.settles == "tau":
+            # a drift: τ at T/10, its change over early in the session (a step between the first
+            # experiments and the rest looks the same); at 20·T, a straight trend in time
+            said = ("over within the first tenth of the session, and a step between the session's first experiments "
+                    "and the rest would look the same" if where == "lower" else
+                    "not seen to settle within the session, and a trend along the session's schedule would look the same")
+            at = self.value(self.settles, "log", lo if where == "lower" else hi)
+            return (f"its {self.settles} is at its {where} bound {at:.3g} s: the change is {said}. To tell: "
+                    f"{EFFECTS[self.name].separated_by}")
         if where == "upper":
             unordered = strokes is not None and abs(strokes.rho) < SPEED_ORDER_RHO
             # "over the session": a schedule that cycles through rising speeds (a tribometer's
@@ -1040,8 +1061,9 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
         # τ ≥ T/10: a faster "drift" is a transient the first experiments of the session see
         # alone — a step between them and the rest, which a schedule ordered in time makes
         # out of any misfit of the model (a session must see a good part of a drift's course)
+        # (one fitted at a bound of τ is not seen settling: ``Term.unsettled``)
         return Term(name, {"t0": t0}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(0.1), math.log(20.0))),
-                    refs={"tau": T})
+                    settles="tau", refs={"tau": T})
     if name == "normal_load":
         n = cmp_.load
         moving = np.abs(cmp_.velocity) > cmp_.v_rest
@@ -2186,10 +2208,13 @@ class Alternative:
     fit_k0: bool = False  # κ0 is refitted with every candidate (u then starts with log κ0)
     sse: np.ndarray | None = None
     preds: list | None = None
+    same_as: "Alternative | None" = None  # predicts as this one does (its held-out scores are that one's)
 
     def held_out(self, engine: Engine, masks: list, k0: float) -> tuple:
         """(SSE per fold, predictions per fold), cross-validated on first use only: when no
         candidate comes near the threshold in-sample, the alternative is never cross-validated."""
+        if self.same_as is not None:
+            return self.same_as.held_out(engine, masks, k0)
         if self.sse is None:
             u = np.concatenate([[math.log(self.fit.g)], self.u])
             self.sse, self.preds, _ = cross_validate(engine, self.terms, u, masks, k0, fit_k0=self.fit_k0)
@@ -2227,6 +2252,34 @@ def stiffness_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, 
     u0 = np.concatenate([[math.log(plain.fit.g), math.log(k0)], plain.u] + [np.zeros(len(t.free)) for t in extra])
     fr = _fit(engine, terms, u0, mask, fit_k0=True, k0=k0)
     return Alternative(fr, terms, fr.u[1:], " and ".join(HELD_STIFFNESS[n] for n in held), fit_k0=True)
+
+
+# the friction candidates fitted with a presliding range following them (``range_alternative``):
+# a temperature and a load move the friction level, and a contact's elasticity need not follow.
+# Not a ripple: a range changing along the position is not a wavy guide's physics, and it let the
+# ripple's factor fit a force along the travel that keeps its sign (3 % of a tribometer's friction
+# added along its stroke was named a ripple, where without it the reading said it apart)
+RANGE_FOLLOWS = ("time_drift", "normal_load")
+
+
+def range_alternative(cmp_: Comparison, plain: Alternative) -> Alternative:
+    """``plain`` with a presliding range (``presliding_range``, e = 0) that a friction candidate
+    fitted beside it follows: the candidate then decides, with its own factor, whether the
+    transitions' range follows it. Without a friction effect in ``plain`` that range does
+    nothing, so this alternative predicts as ``plain`` does (``same_as``).
+
+    Eq. (3)'s factor scales the transition curve's forces with the friction and keeps the range
+    to break-away; a contact whose elasticity does not follow a warm-up or a load (a
+    Maxwell-slip contact whose slip levels move: F(z) → m·F(z/m)) stretches the range instead.
+    Without the range, such a drift or load leaves the transitions a stiffness changing as it
+    goes on, a trend in the reversal count on regular strokes that a softening takes up in the
+    same round. A candidate is judged both ways (``diagnose``'s ``judge``); on a sweep in rising
+    speeds, where the sliding cannot tell a drift from the shape of S(v), the range is what lets
+    the drift's fit keep the sliding's change and leave the transitions' to the range."""
+    term = _terms_for("presliding_range", cmp_)
+    fit = dataclasses.replace(plain.fit, entries=list(plain.fit.entries) + [_entry(term, np.zeros(len(term.free)))])
+    return Alternative(fit, plain.terms + [term], np.concatenate([plain.u, np.zeros(len(term.free))]),
+                       HELD_STIFFNESS["presliding_range"], plain.fit_k0, same_as=plain)
 
 
 def held_stiffness(terms: list, settings: Settings) -> tuple:
@@ -3109,16 +3162,17 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             say(0.1 + 0.8 * step / s.max_effects,
                 f"step {step + 1}: the alternative with {' and '.join(HELD_STIFFNESS[n] for n in held)}")
             beside_stiffness = stiffness_alternative(engine, cmp_, plain, k0, allm, held)
-        for j, name in enumerate(todo):
-            say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
-            alt = beside_stiffness if (beside_stiffness is not None and EFFECTS[name].acts_on == "stiffness") else plain
+
+        def judge(name: str, alt: Alternative) -> Evidence | None:
+            """The candidate ``name`` fitted beside ``alt`` and, unless it is far from the
+            threshold in-sample, cross-validated against it."""
             # a stiffness candidate, and the alternative it must beat, follow the friction effects as
             # that alternative fitted them (``Engine.following_held``)
             engine.following_held(alt.fit.entries if alt is beside_stiffness else None)
             rss_null = alt.fit.rss
             options = fit_candidate(engine, name, cmp_, strokes, alt, allm, k0, s.softening_thresholds)
             if not options:
-                continue
+                return None
             term, fr = options[0]
             terms = alt.terms + [term]
             rms_c, rms_a = _rms((meas - fr.pred)[allm]), _rms((meas - alt.fit.pred)[allm])
@@ -3127,9 +3181,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             if rms_c > (1.0 - PRESCREEN * s.min_gain) * rms_a:
                 # held out, a candidate does worse than in-sample: one this far below the threshold
                 # on the data it was fitted to is not cross-validated
-                evid.append(Evidence(name, fr.entries[-1]["params"], rms_c, None, None, None, dbic, fr.pred - alt.fit.pred,
-                                     fr, against=alt, rms_alt=rms_a))
-                continue
+                return Evidence(name, fr.entries[-1]["params"], rms_c, None, None, None, dbic, fr.pred - alt.fit.pred,
+                                fr, against=alt, rms_alt=rms_a)
             null_sse, null_preds = alt.held_out(engine, masks, k0)
             _, preds, fold_entries = cross_validate(engine, terms, fr.u, masks, k0, fit_k0=alt.fit_k0,
                                                     others=tuple((alt.terms + [t], f.u) for t, f in options[1:]))
@@ -3149,10 +3202,22 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 folds_there = f"{int(np.sum((sp < npre) & inf_p))}/{int(inf_p.sum())}"
                 if not (inf_p.sum() >= 2 and np.sum((sp < npre) & inf_p) > inf_p.sum() / 2 and gain_there >= s.min_gain):
                     failed_where = where_name
-            evid.append(Evidence(name, fr.entries[-1]["params"], rms_c, sse, null_sse, informative, dbic,
-                                 fr.pred - alt.fit.pred, fr, failed_where, where_name, gain_there, folds_there,
-                                 alt, rms_a, term.unsettled(fr.u[len(fr.u) - len(term.free):], strokes),
-                                 fold_entries))
+            return Evidence(name, fr.entries[-1]["params"], rms_c, sse, null_sse, informative, dbic,
+                            fr.pred - alt.fit.pred, fr, failed_where, where_name, gain_there, folds_there,
+                            alt, rms_a, term.unsettled(fr.u[len(fr.u) - len(term.free):], strokes), fold_entries)
+
+        for j, name in enumerate(todo):
+            say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
+            alts = [beside_stiffness if (beside_stiffness is not None and EFFECTS[name].acts_on == "stiffness") else plain]
+            if (s.range_with_friction and name in RANGE_FOLLOWS
+                    and "presliding_range" not in {t.name for t in plain.terms}):
+                alts.append(range_alternative(cmp_, plain))
+            judged = [e for e in (judge(name, a) for a in alts) if e is not None]
+            if judged:
+                # with a range following it and without, each judged on its own: the one that passes,
+                # else the one better held out (a rotary table's warm-up passed without the range and
+                # not with it; drifts hidden by rising sweeps of the suite pass with it only)
+                evid.append(max(judged, key=lambda e: (e.passes(s), e.heldout_gain)))
         engine.following_held(None)
         if pending is not None:
             # a rival the last winner did not clearly beat, its correction unlike the winner's, that

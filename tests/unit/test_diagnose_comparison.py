@@ -197,6 +197,21 @@ def test_a_saturation_scale_at_either_bound_is_not_seen_settling():
     assert "at its lower bound 3" in term.unsettled(np.array([-0.3, math.log(3.0)]), cycled)
 
 
+def test_a_drift_at_a_bound_of_its_time_constant_or_of_its_size_is_not_seen_settling():
+    # τ between T/10 and 20·T of a 100 s session, b between −0.9 and 5: at τ = 10 s the change is
+    # over early (a step at the start looks the same); at 2000 s, or with b at −0.9 (friction
+    # falling by 90 % once settled), it is a straight trend whose bend is not seen
+    term = Term("time_drift", {"t0": 0.0}, (("b", "lin", -0.9, 5.0), ("tau", "log", math.log(0.1), math.log(20.0))),
+                settles="tau", refs={"tau": 100.0})
+    assert "lower bound 10 s" in term.unsettled(np.array([0.2, math.log(0.1)]))
+    assert "first tenth" in term.unsettled(np.array([0.2, math.log(0.101)]))  # within 2 %
+    assert "upper bound 2e+03 s" in term.unsettled(np.array([0.2, math.log(20.0)]))
+    assert "straight trend" in term.unsettled(np.array([-0.9, math.log(3.0)]))
+    assert "straight trend" in term.unsettled(np.array([5.0, math.log(3.0)]))
+    assert term.unsettled(np.array([0.2, math.log(0.3)])) is None
+    assert term.unsettled(np.array([-0.85, math.log(3.0)])) is None  # b inside its range
+
+
 def test_the_level_at_rest_is_a_free_scale_of_the_model_there():
     v = _holds([0.05, -0.05, 0.1, -0.1])
     rest = v == 0
