@@ -503,7 +503,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "plant simulated in short windows")
     d.add_argument("--require-settling", action=argparse.BooleanOptionalAction, default=True,
                    help="do not name an effect whose change is not seen to settle within the session (its "
-                        "saturation scale at a bound, e.g. a softening's n_c), since a trend along the session's schedule "
+                        "saturation scale at a bound, e.g. a softening's n_c, or a drift's τ or b at a bound), since a trend along the session's schedule "
                         "would look the same: report it as seen, not named (the default). --no-require-settling "
                         "names it, with that caveat")
     d.add_argument("--refit-base", action="store_true",

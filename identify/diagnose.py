@@ -2268,6 +2268,8 @@ def range_alternative(cmp_: Comparison, plain: Alternative) -> Alternative:
     transitions' range follows it. Without a friction effect in ``plain`` that range does
     nothing, so this alternative predicts as ``plain`` does (``same_as``).
 
+    Used only while ``plain`` holds no friction effect (the caller's test).
+
     Eq. (3)'s factor scales the transition curve's forces with the friction and keeps the range
     to break-away; a contact whose elasticity does not follow a warm-up or a load (a
     Maxwell-slip contact whose slip levels move: F(z) → m·F(z/m)) stretches the range instead.
@@ -2489,7 +2491,7 @@ class Diagnosis:
         effect seen that is not seen to settle within the session (with ``Settings.must_settle``),
         one that gains held out but not where it must show, and pairs of effects confounded
         with each other."""
-        return ([f"{c['name']} seen, not named (its change is not seen to settle within the session)" for c in self.unsettled]
+        return ([f"{c['name']} seen, not named (its change is not seen to settle within the session: a trend or a step would look the same)" for c in self.unsettled]
                 + [f"{c['name']} seen, not named (it gains held out, but not in {c['not_where_it_shows']})"
                    for c in self.elsewhere]
                 + [f"{c['effects'][0]} and {c['effects'][1]} confounded" for c in self.confounded]
@@ -3209,15 +3211,18 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         for j, name in enumerate(todo):
             say(0.1 + 0.8 * (step + (j + 1) / (len(todo) + 1)) / s.max_effects, f"step {step + 1}: {name}")
             alts = [beside_stiffness if (beside_stiffness is not None and EFFECTS[name].acts_on == "stiffness") else plain]
+            # only while no friction effect is in the model: the range, following their product, would
+            # otherwise reshape the transitions under that effect alone, and the candidate be credited
+            # with what the range does by itself (``range_alternative`` is ``plain`` only there)
             if (s.range_with_friction and name in RANGE_FOLLOWS
-                    and "presliding_range" not in {t.name for t in plain.terms}):
+                    and not any(EFFECTS[t.name].acts_on == "friction" for t in plain.terms)):
                 alts.append(range_alternative(cmp_, plain))
             judged = [e for e in (judge(name, a) for a in alts) if e is not None]
             if judged:
                 # with a range following it and without, each judged on its own: the one that passes,
-                # else the one better held out (a rotary table's warm-up passed without the range and
+                # else the one furthest along the rule (evident, then gaining held out), then better held out (a rotary table's warm-up passed without the range and
                 # not with it; drifts hidden by rising sweeps of the suite pass with it only)
-                evid.append(max(judged, key=lambda e: (e.passes(s), e.heldout_gain)))
+                evid.append(max(judged, key=lambda e: (e.passes(s), e.evident(s), e.gains_held_out(s), e.heldout_gain)))
         engine.following_held(None)
         if pending is not None:
             # a rival the last winner did not clearly beat, its correction unlike the winner's, that

@@ -41,7 +41,8 @@ class DiagnoseTab:
             self.gui_settle = gui.add_checkbox("Require settling", initial_value=True,
                                                hint="an effect whose change is not seen to settle within the session (a "
                                                     "softening still going at the end, or over after the first "
-                                                    "reversals) is listed as seen, not named: a trend or a step "
+                                                    "reversals; a drift that is a straight trend, or over in "
+                                                    "the first tenth) is listed as seen, not named: a trend or a step "
                                                     "along the session's schedule would look the same")
             self.gui_cancel = gui.add_button("Cancel diagnosis", visible=False, color="red")
             self.gui_progress = gui.add_progress_bar(0.0, visible=False)
