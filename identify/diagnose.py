@@ -605,12 +605,20 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
     reading = inertia_read(f, vel, m.t, L0, m.v_rest)
     est = reading.estimate
     friction_named_force = f"; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}"
+    if rec.normal_load is not None:
+        # friction that follows a load changing along the record is a slow part of the force the
+        # regression on the acceleration does not model, and can hide I·ẍ as well
+        n = np.abs(np.asarray(rec.normal_load, dtype=np.float64))
+        change = float(np.ptp(n) / max(float(np.median(n)), 1e-300))
+        if change > 0.1:
+            friction_named_force += (f"; or friction following the normal load, which changes by {100 * change:.0f} % "
+                                     f"along the record, hides it (`diagnose` tells whether the load is an effect)")
     if est is None:
         # the hint only where the regression finds no inertial term at all, not where there is
         # too little steady sliding to look (a sweep whose levels the fit could not find)
         return None, f"not read: {reading.why}" + (friction_named_force if reading.no_inertial_term else "")
     if not est.usable:
-        return est, (f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to use (σ over a quarter of the value"
+        return est, (f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to write as an estimate (σ over a quarter of the value"
                      + (friction_named_force if abs(est.value) < 2.0 * est.stderr else "") + ")")
     return est, (f"read as {est.value:.4g} ± {est.stderr:.2g} (the force regressed on the mean acceleration over "
                  f"{8 * L0 + 1} and {32 * L0 + 1} samples)")
@@ -3379,7 +3387,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         s1_ends = (params.sigma1 / SIGMA1_REFIT_MAX, params.sigma1 * SIGMA1_REFIT_MAX)
         s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's: the record pushes it further)"
                     if _at_range_end(final_base.sigma1, s1_ends) else "")
-        n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further)"
+        # n's ends are limits of eq. (5)'s form, not of a setting: say what the record asks for
+        n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further, "
+                   + ("its transitions run into sliding more gradually than eq. (5) follows with any n ≥ 1"
+                      if final_base.n < math.sqrt(N_REFIT[0] * N_REFIT[1]) else
+                      "its transitions end in sliding more abruptly than eq. (5) follows, a corner")
+                   + "; a shape of the contact this model does not reach, not a setting)"
                    if _at_range_end(final_base.n, N_REFIT) else "")
         cmp_.notes.append(f"the model written (every step; no free steady curve) refits, besides the level "
                           f"(×{final.g:.4g}, in the values that follow), the stiffness and the effects: "

@@ -531,6 +531,19 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     if n_br:
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
         tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+        for _ in range(len(z)):
+            beyond = list(tfit.beyond)
+            if not beyond or knots is not None or len(z) - len(beyond) < 2:
+                break
+            # segments above every force change the branches reach: no datum depends on their
+            # rise (``TransitionFit.beyond``); the curve ends at the last knot the data reach into
+            # and goes on with that segment's slope (the branches' top knot sits where the
+            # furthest one stopped moving in force, and may lie above what any of them asked)
+            notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in beyond)} lie above "
+                         f"every force change the branches reach ({tfit.asked:.3g}): not determined by the data, "
+                         f"dropped (the curve goes on with the slope of its last segment)")
+            z = np.delete(z, beyond)
+            tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
         flat = list(tfit.flat)
         if flat and knots is None and len(z) - len(flat) >= 2:
             # a segment the likelihood makes flat (its increment at the lower limit, 10⁻⁶ of the

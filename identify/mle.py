@@ -124,6 +124,8 @@ class TransitionFit:
     notes: list = field(default_factory=list)
     flat: tuple = ()  # knots i whose increment F_i − F_(i−1) ended at its lower bound: the data do not resolve it
     unbounded: tuple = ()  # … at its upper bound: the data do not bound F_d there (not an estimate)
+    beyond: tuple = ()  # knots i whose segment starts above every force change a branch reaches (``asked_force``)
+    asked: float = 0.0  # that largest force change
     chi2: float = 0.0  # Σ r² over the branches with Gaussian noise (quantised readings have no χ²)
     dof: int = 0  # … their samples less the parameters they share and their own offsets
 
@@ -139,6 +141,16 @@ class TransitionFit:
             if np.isfinite(var) and var > 0.0 and math.sqrt(var) > 0.5 * (self.F[i] - self.F[i - 1]):
                 out.append(i)
         return tuple(out)
+
+
+def asked_force(br: Branch, z_knots, F_knots, n, offset) -> float:
+    """The largest force change at which the branch evaluates F_d⁻¹: its largest force change
+    (below 0.999·D) where the force is the input, the force it is predicted to reach at its
+    furthest displacement where the motion is. A segment of F_d starting above it for every
+    branch changes no prediction: the likelihood does not depend on its rise at all."""
+    if br.driven == "motion":
+        return float(np.max(branch_prediction(br, z_knots, F_knots, n, offset)[1]))
+    return float(min(np.max(br.force), 0.999 * br.D))
 
 
 def eq5_factor_integral(F, D: float, n: float):
@@ -282,6 +294,17 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
     at = BOUND_TOL * np.maximum(1.0, np.abs(hi[:nk] - lo[:nk]))
     flat = tuple(int(i) + 1 for i in np.flatnonzero(best.x[:nk] <= lo[:nk] + at))
     unbounded = tuple(int(i) + 1 for i in np.flatnonzero(best.x[:nk] >= hi[:nk] - at))
+    # a knot whose segment starts above every force change a branch asks of F_d has a rise the
+    # likelihood does not depend on: wherever the optimiser leaves it, it is no estimate, and its
+    # σ from the Hessian (zero information, inverted by a pseudo-inverse) is no error bar (a
+    # stage whose branches slide at 0.55 N wrote two knots above 0.58 N "± 1e-9", flat, and its
+    # transitions never reached the other sliding direction)
+    offs, asked, i = list(off), 0.0, 0
+    for ds in datasets:
+        for br in ds.branches:
+            asked = max(asked, asked_force(br, z_knots, F, nn, offs[i]))
+            i += 1
+    beyond = tuple(i for i in range(1, len(F)) if F[i - 1] >= asked)
 
     H = _information(z_knots, F, nn, fit_n, off, datasets)
     notes = []
@@ -307,7 +330,7 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
     return TransitionFit(
         z=z_knots, F=F, stderr=np.concatenate([[0.0], sd[:nk]]), covariance=cov[:nk, :nk], n=nn,
         n_stderr=float(sd[nk]) if fit_n else None, nll=float(best.fun), offsets=list(map(float, off)), notes=notes,
-        flat=flat, unbounded=unbounded, chi2=chi2, dof=dof,
+        flat=flat, unbounded=unbounded, beyond=beyond, asked=asked, chi2=chi2, dof=dof,
     )
 
 

@@ -253,3 +253,23 @@ def test_a_misfit_of_the_levels_that_follows_their_time_is_said():
         assert ("follows the time the levels were run in" in note) == said, note
         if said:
             assert "order of speed" not in note  # the visits are shuffled: time and speed are apart
+
+
+def test_ml_names_the_knots_above_every_force_the_branches_reach_and_recovers_those_below():
+    # F_d = tanh(z) (any unit), force-driven branches up to 0.5 far from sliding (D = 1000: eq.
+    # (5)'s factor is 1 to 1e-20, the displacement atanh(ΔF)). The segment from z = 0.4 to 0.8
+    # holds the branches' top (atanh(0.5) = 0.549); the two beyond it start above 0.5 in force,
+    # where no datum depends on them (tanh(0.8) = 0.66)
+    rng = np.random.default_rng(3)
+    f = np.linspace(0.0, 0.5, 200)
+    data = PreslidingData([Branch(f, np.arctanh(f) + rng.normal(0, 1e-4, len(f)), 1000.0) for _ in range(4)],
+                          Gaussian(1e-4))
+    z = np.array([0.0, 0.2, 0.4, 0.8, 1.4, 2.0])
+    fit = fit_transition_curve([data], z)
+    assert fit.beyond == (4, 5), (fit.F, fit.asked)
+    assert abs(fit.asked - 0.5) < 0.01, fit.asked
+    # below the branches' top the knots are those of tanh, within their error (the chord of the
+    # segment holding the top bends the one before it a little)
+    assert np.all(np.abs(fit.F[1:3] - np.tanh(z[1:3])) < 0.02), fit.F
+    # and with the knots inside the reach, nothing is beyond
+    assert fit_transition_curve([data], np.array([0.0, 0.2, 0.4, 0.55])).beyond == ()
