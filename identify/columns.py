@@ -20,7 +20,8 @@ ALIASES = {  # header names, lower case, units stripped; the German ones as lab 
 
 UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm, in, mil, ft; rad, mrad, urad, deg; N, mN, uN, kN, lbf (lb), ozf; "
                   "their products for a torque (N·m, N*m, N.m, N-m, mN·m, N·mm, Nmm, mNm, lbf·in, in-lb, lbf·ft) and "
-                  "quotients for a speed (mm/s, in/s, deg/s, rad/s); °C, K")
+                  "quotients for a speed (mm/s, in/s, deg/s, rad/s); °C, K; any of them with a size in front "
+                  "(50 nm, 0.001 deg: one step of an encoder logged in counts)")
 
 
 def columns_help() -> str:

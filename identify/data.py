@@ -113,7 +113,17 @@ def unit_of(unit: str, sig: str) -> tuple[float, str] | None:
         return UNITS["nm_torque"]
     if key.replace(" ", "") in UNITS:
         return UNITS[key.replace(" ", "")]
+    scaled = _SCALED.match(key)
+    if scaled:
+        # a unit with a size in front ('50 nm', '0.001 deg'): what one count of an encoder is
+        size, base = float(scaled[1]), unit_of(scaled[2], sig)
+        return (size * base[0], base[1]) if base is not None and size > 0 else None
     return _compound(key)
+
+
+_SCALED = re.compile(r"^(\d*\.?\d+(?:e[-+]?\d+)?)\s*(?:[*·]\s*)?(\D.*)$")
+# units that count steps and say nothing of their size (``unit_of`` takes '50 nm' for one)
+COUNTS = ("count", "counts", "cts", "ct", "inc", "incs", "increments", "pulses", "ticks", "lsb", "steps")
 
 
 def _fits(unit: str | None, sig: str) -> bool:
@@ -387,6 +397,13 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     missing = [s for s in require if s not in mapping]
     if missing:
         could = "".join(f"; {', '.join(ambiguous[m])} could each be {m}" for m in missing if m in ambiguous)
+        counted = [(c, _split_header(c)[0]) for c in in_file if (_split_header(c)[1] or "").strip().lower() in COUNTS]
+        if counted:
+            # a count is read as no unit of any signal: say what it lacks before naming columns
+            (col, name), = counted[:1]
+            raise DataError(f"{path}: no column for {', '.join(missing)}: column {col!r} counts steps without saying "
+                            f"their size: write the size of one step as its unit, e.g. '{name} [50 nm]' or "
+                            f"'{name} [0.001 deg]'")
         raise DataError(
             f"{path}: no column for {', '.join(missing)} (columns: {_listing(in_file)}{could}; "
             f"name them with --columns {missing[0]}=<column>)"
@@ -418,6 +435,10 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         unit = (units or {}).get(sig) or headers[col][1]
         if unit is not None and sig != "temperature":
             if unit_of(unit, sig) is None:
+                if unit.strip().lower() in COUNTS:
+                    raise DataError(f"{path}: column {col!r}: unit {unit!r} counts steps without saying their size: "
+                                    f"write the size of one step as the unit, e.g. '{headers[col][0]} [50 nm]' or "
+                                    f"'{headers[col][0]} [0.001 deg]'")
                 raise DataError(f"{path}: column {col!r}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
             factor, si = unit_of(unit, sig)
             if si not in SI_OF[sig]:

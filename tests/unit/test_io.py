@@ -311,6 +311,23 @@ def test_an_unknown_unit_is_refused_with_the_known_ones(tmp_path):
         load_recording(path)
 
 
+def test_an_encoder_logged_in_counts_reads_with_the_size_of_a_count_as_its_unit(tmp_path):
+    # 1234 counts of 50 nm are 61.7 µm; of 0.001° they are 1.234° (the radian by hand)
+    rows = "".join(f"{i},{1234 + i},{i}\n" for i in range(20))
+    for unit, count in (("50 nm", 50e-9), ("5e-8 m", 5e-8), ("0.001 deg", 0.001 * np.pi / 180)):
+        path = tmp_path / "enc.csv"
+        path.write_text(f"time [ms],encoder [{unit}],force [mN]\n" + rows)
+        rec = load_recording(path)
+        np.testing.assert_allclose(rec.position[:2], [1234 * count, 1235 * count], rtol=1e-12)
+    # a count without its size is refused, saying what to write, whether or not the column is named
+    path.write_text("time [ms],encoder [counts],force [mN]\n" + rows)
+    with pytest.raises(DataError, match=r"column 'encoder \[counts\]' counts steps without saying their size: write "
+                                        r"the size of one step as its unit, e.g. 'encoder \[50 nm\]'"):
+        load_recording(path, require=("time", "position"))
+    with pytest.raises(DataError, match=r"unit 'counts' counts steps without saying their size"):
+        load_recording(path, columns={"position": "encoder [counts]"})
+
+
 def test_columns_a_logger_adds_are_not_taken_by_their_words(tmp_path):
     # a file that loaded before the names' words were read loads the same: a controller's friction
     # model, a reference, a current, a load cell, a motor temperature with blanks and a sample
