@@ -680,8 +680,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         try:
             from .refine import refine_fit
 
-            say(0.7, "output-error refinement")
+            say(0.7, "output-error refinement: trying")
             res = refine_fit(res, preps, sigma1_given=base is not None)
+            if not (res.refinement or {}).get("done"):
+                say(0.95, "output-error refinement: not done (the report says why)")
         except ImportError:
             res.refinement = {"done": False, "reason": "output-error refinement is not available in this version"}
     else:
