@@ -397,9 +397,11 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     missing = [s for s in require if s not in mapping]
     if missing:
         could = "".join(f"; {', '.join(ambiguous[m])} could each be {m}" for m in missing if m in ambiguous)
-        counted = [(c, _split_header(c)[0]) for c in in_file if (_split_header(c)[1] or "").strip().lower() in COUNTS]
+        # a column whose name says a missing signal, passed over for a unit in counts (no unit of
+        # any signal): say what that unit lacks before naming columns
+        counted = [(c, key) for c in in_file for key, unit in [_split_header(c)]
+                   if (unit or "").strip().lower() in COUNTS and any(sig in missing for sig, _ in recognise(key.lower()))]
         if counted:
-            # a count is read as no unit of any signal: say what it lacks before naming columns
             (col, name), = counted[:1]
             raise DataError(f"{path}: no column for {', '.join(missing)}: column {col!r} counts steps without saying "
                             f"their size: write the size of one step as its unit, e.g. '{name} [50 nm]' or "

@@ -609,10 +609,11 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
         # friction that follows a load changing along the record is a slow part of the force the
         # regression on the acceleration does not model, and can hide I·ẍ as well
         n = np.abs(np.asarray(rec.normal_load, dtype=np.float64))
-        change = float(np.ptp(n) / max(float(np.median(n)), 1e-300))
+        change = float(np.ptp(n) / np.max(n)) if np.max(n) > 0 else 0.0
         if change > 0.1:
-            friction_named_force += (f"; or friction following the normal load, which changes by {100 * change:.0f} % "
-                                     f"along the record, hides it (`diagnose` tells whether the load is an effect)")
+            friction_named_force += (f"; or friction following the normal load, which spans {100 * change:.0f} % of its "
+                                     f"largest value along the record, hides it (`diagnose` tells whether the load is "
+                                     f"an effect)")
     if est is None:
         # the hint only where the regression finds no inertial term at all, not where there is
         # too little steady sliding to look (a sweep whose levels the fit could not find)
@@ -3389,10 +3390,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                     if _at_range_end(final_base.sigma1, s1_ends) else "")
         # n's ends are limits of eq. (5)'s form, not of a setting: say what the record asks for
         n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further, "
-                   + ("its transitions run into sliding more gradually than eq. (5) follows with any n ≥ 1"
+                   + (f"its transitions run into sliding more gradually than eq. (5) does at n = {N_REFIT[0]:g}"
                       if final_base.n < math.sqrt(N_REFIT[0] * N_REFIT[1]) else
-                      "its transitions end in sliding more abruptly than eq. (5) follows, a corner")
-                   + "; a shape of the contact this model does not reach, not a setting)"
+                      f"its transitions end in sliding more abruptly than eq. (5) does at n = {N_REFIT[1]:g}, a corner")
+                   + ": the contact's shape, not the data's noise)"
                    if _at_range_end(final_base.n, N_REFIT) else "")
         cmp_.notes.append(f"the model written (every step; no free steady curve) refits, besides the level "
                           f"(×{final.g:.4g}, in the values that follow), the stiffness and the effects: "

@@ -531,6 +531,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     if n_br:
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
         tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+        if knots is not None and tfit.beyond:
+            # knots the user placed are kept as given, and what the data say of them is said
+            notes.append(f"transition curve: the knot(s) given at z = {', '.join(f'{z[i]:.3g}' for i in tfit.beyond)} "
+                         f"lie above every force change the branches reach ({tfit.asked:.3g}): F_d there is not "
+                         f"determined by the data (its value and σ are no estimate)")
         for _ in range(len(z)):
             beyond = list(tfit.beyond)
             if not beyond or knots is not None or len(z) - len(beyond) < 2:

@@ -149,7 +149,11 @@ def asked_force(br: Branch, z_knots, F_knots, n, offset) -> float:
     furthest displacement where the motion is. A segment of F_d starting above it for every
     branch changes no prediction: the likelihood does not depend on its rise at all."""
     if br.driven == "motion":
-        return float(np.max(branch_prediction(br, z_knots, F_knots, n, offset)[1]))
+        # the prediction interpolates x(ΔF) on ``branch_prediction``'s grid: the grid point above
+        # the largest one predicted is where F_d⁻¹ was last evaluated
+        fg = np.linspace(0.0, 0.999 * br.D, GRID)
+        top = float(np.max(branch_prediction(br, z_knots, F_knots, n, offset)[1]))
+        return float(fg[min(int(np.searchsorted(fg, top, side="right")), GRID - 1)])
     return float(min(np.max(br.force), 0.999 * br.D))
 
 

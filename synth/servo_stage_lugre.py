@@ -1,8 +1,8 @@
 """A position-servoed precision stage with LuGre friction, simulated apart from the project.
 
-Written without the project's code or generators, for a trial of `fit` then `diagnose` on data
-nobody here made (README, Diagnosis, "On recordings made apart from this project"); kept so
-that trial can be run again and the slow tests can hold it (``tests/slow/test_diagnose_servo_stage.py``).
+Written without the project's code or generators, for a trial of `fit` then `diagnose` on
+recordings made apart from them (README, Diagnosis, "On recordings made apart from this
+project"); kept so that trial can be run again and the slow tests can hold it (``tests/slow/test_diagnose_servo_stage.py``).
 Nothing from leuven-friction is imported.
 
 Plant: a 0.8 kg carriage under a PID position loop (30 Hz bandwidth); friction from a LuGre

@@ -68,7 +68,8 @@ def test_a_drift_beside_a_ripple_names_both_with_the_simulators_values(tmp_path)
     assert abs(rip["params"]["wavelength"] - 1.0e-3) < 0.02e-3, rip
     assert abs(rip["params"]["a"] - 0.10) < 3 * rip["sd"]["a"] + 0.03, rip
     assert abs(drift["params"]["b"] - 0.25) < 3 * drift["sd"]["b"] + 0.05, drift
-    # τ: the drift reaches 95 % of its course within the session either way
+    # τ (43 s imposed): the drift seen running its course within the session, neither a step at
+    # its start (τ ≥ T/10) nor a trend going on past its end (τ ≤ T)
     assert 0.1 * T < drift["params"]["tau"] < T, drift
 
 

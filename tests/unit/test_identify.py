@@ -273,3 +273,33 @@ def test_ml_names_the_knots_above_every_force_the_branches_reach_and_recovers_th
     assert np.all(np.abs(fit.F[1:3] - np.tanh(z[1:3])) < 0.02), fit.F
     # and with the knots inside the reach, nothing is beyond
     assert fit_transition_curve([data], np.array([0.0, 0.2, 0.4, 0.55])).beyond == ()
+
+
+def test_a_knot_named_beyond_the_branches_changes_no_prediction_motion_or_force_driven():
+    # what `beyond` claims, checked on the predictions themselves: raising the rise of every knot
+    # it names (by 30 %) leaves each branch's prediction as it was, and raising the last knot it
+    # does not name changes some prediction
+    from leuven_friction.identify.mle import branch_prediction
+
+    rng = np.random.default_rng(8)
+    x = np.linspace(0.0, 0.5, 150)
+    motion = PreslidingData([Branch(np.tanh(x) + rng.normal(0, 1e-3, len(x)), x, 3.0, driven="motion")
+                             for _ in range(3)], Gaussian(1e-3))
+    f = np.linspace(0.0, 0.45, 150)
+    force = PreslidingData([Branch(f, np.arctanh(f) + rng.normal(0, 1e-4, len(f)), 3.0) for _ in range(3)], Gaussian(1e-4))
+    z = np.array([0.0, 0.15, 0.3, 0.6, 1.2, 2.0])
+    for data in (motion, force):
+        fit = fit_transition_curve([data], z)
+        assert fit.beyond and fit.beyond[0] >= 2, (fit.F, fit.asked)
+        first = fit.beyond[0]
+
+        def preds(F):
+            return [branch_prediction(br, z, F, fit.n, off)[1] for br, off in zip(data.branches, fit.offsets)]
+
+        base = preds(fit.F)
+        raised = fit.F.copy()
+        raised[first:] += 0.3 * (fit.F[first:] - fit.F[first - 1])
+        assert all(np.array_equal(a, b) for a, b in zip(base, preds(raised)))
+        inside = fit.F.copy()
+        inside[first - 1:] += 0.3 * (fit.F[first - 1] - fit.F[first - 2])
+        assert any(not np.allclose(a, b, rtol=0, atol=1e-12) for a, b in zip(base, preds(inside)))
