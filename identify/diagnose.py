@@ -619,7 +619,8 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
         # too little steady sliding to look (a sweep whose levels the fit could not find)
         return None, f"not read: {reading.why}" + (friction_named_force if reading.no_inertial_term else "")
     if not est.usable:
-        return est, (f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to write as an estimate (σ over a quarter of the value"
+        return est, (f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to write as an estimate (σ over a "
+                     f"quarter of the value"
                      + (friction_named_force if abs(est.value) < 2.0 * est.stderr else "") + ")")
     return est, (f"read as {est.value:.4g} ± {est.stderr:.2g} (the force regressed on the mean acceleration over "
                  f"{8 * L0 + 1} and {32 * L0 + 1} samples)")
@@ -3388,7 +3389,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         s1_ends = (params.sigma1 / SIGMA1_REFIT_MAX, params.sigma1 * SIGMA1_REFIT_MAX)
         s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's: the record pushes it further)"
                     if _at_range_end(final_base.sigma1, s1_ends) else "")
-        # n's ends are limits of eq. (5)'s form, not of a setting: say what the record asks for
+        # n at an end of its refit range: the record asks for a shape beyond it, say which way
         n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further, "
                    + (f"its transitions run into sliding more gradually than eq. (5) does at n = {N_REFIT[0]:g}"
                       if final_base.n < math.sqrt(N_REFIT[0] * N_REFIT[1]) else
