@@ -126,6 +126,11 @@ _SCALED = re.compile(r"^(\d*\.?\d+(?:e[-+]?\d+)?)\s*(?:[*·]\s*)?(\D.*)$")
 COUNTS = ("count", "counts", "cts", "ct", "inc", "incs", "increments", "pulses", "ticks", "lsb", "steps")
 
 
+def _counts_fix(name: str) -> str:
+    """What to write for a column ``name`` logged in counts: the size of one step as its unit."""
+    return f"write the size of one step as its unit, e.g. '{name} [50 nm]' or '{name} [0.001 deg]'"
+
+
 def _fits(unit: str | None, sig: str) -> bool:
     u = unit_of(unit, sig) if unit is not None else None
     return u is not None and u[1] in SI_OF[sig]
@@ -404,8 +409,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         if counted:
             (col, name), = counted[:1]
             raise DataError(f"{path}: no column for {', '.join(missing)}: column {col!r} counts steps without saying "
-                            f"their size: write the size of one step as its unit, e.g. '{name} [50 nm]' or "
-                            f"'{name} [0.001 deg]'")
+                            f"their size: {_counts_fix(name)}")
         raise DataError(
             f"{path}: no column for {', '.join(missing)} (columns: {_listing(in_file)}{could}; "
             f"name them with --columns {missing[0]}=<column>)"
@@ -439,8 +443,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             if unit_of(unit, sig) is None:
                 if unit.strip().lower() in COUNTS:
                     raise DataError(f"{path}: column {col!r}: unit {unit!r} counts steps without saying their size: "
-                                    f"write the size of one step as the unit, e.g. '{headers[col][0]} [50 nm]' or "
-                                    f"'{headers[col][0]} [0.001 deg]'")
+                                    f"{_counts_fix(headers[col][0])}")
                 raise DataError(f"{path}: column {col!r}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
             factor, si = unit_of(unit, sig)
             if si not in SI_OF[sig]:

@@ -982,15 +982,13 @@ class Term:
         within the first few reversals, and a step between the session's first experiment and
         the next would look the same — or None."""
         where = self.bound(u)
-        if self.settles == "tau" and where is None:
+        if self.settles == "tau" and where is None and "b" in self.at_bounds(u):
             # a drift whose b ends at a bound of its range (friction falling by 90 %, rising five
             # times, once settled) is a straight trend extrapolated: its bend is not seen either
             j = [f[0] for f in self.free].index("b")
-            blo, bhi = self.free[j][2:4]
-            if min(u[j] - blo, bhi - u[j]) <= BOUND_TOL * (bhi - blo):
-                return (f"its b is at a bound of its range ({u[j]:.3g}): the change is a straight trend in time, its "
-                        f"bend towards a settled value not seen, and a trend along the session's schedule would look "
-                        f"the same. To tell: {EFFECTS[self.name].separated_by}")
+            return (f"its b is at a bound of its range ({u[j]:.3g}): the change is a straight trend in time, its "
+                    f"bend towards a settled value not seen, and a trend along the session's schedule would look "
+                    f"the same. To tell: {EFFECTS[self.name].separated_by}")
         if where is None:
             return None
         lo, hi = next(f[2:4] for f in self.free if f[0] == self.settles)
@@ -3230,8 +3228,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             judged = [e for e in (judge(name, a) for a in alts) if e is not None]
             if judged:
                 # with a range following it and without, each judged on its own: the one that passes,
-                # else the one furthest along the rule (evident, then gaining held out), then better held out (a rotary table's warm-up passed without the range and
-                # not with it; drifts hidden by rising sweeps of the suite pass with it only)
+                # else the one furthest along the rule (evident, then gaining held out), then better
+                # held out (a rotary table's warm-up passed without the range and not with it; drifts
+                # hidden by rising sweeps of the suite pass with it only)
                 evid.append(max(judged, key=lambda e: (e.passes(s), e.evident(s), e.gains_held_out(s), e.heldout_gain)))
         engine.following_held(None)
         if pending is not None:
