@@ -199,7 +199,7 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     (``segment.sliding_levels``) where that shows more speeds, and what was done, in words
     ("" if nothing). Gross sliding starts past twice the presliding range, the median travel
     over which the friction crossed to sliding after a reversal, to the sliding friction at the
-    speed reached (``segment.crossing_range`` with a varying speed; at least
+    speed reached (``segment.crossing_range``; at least
     MIN_RANGE_BRANCHES crossings). The paper's Markov estimator takes constant-velocity runs; a
     recording made without them (a crank-driven tribometer, a sinusoidal force) still shows
     S(v) wherever its velocity changes slowly against the friction's lag, and that is used
@@ -207,7 +207,7 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     sides = {1.0: "positive", -1.0: "negative"}
     if has_speed_sweep(levels) or prep.friction is None:
         return levels, ""
-    ranges = [r for c in crossings(prep) if math.isfinite(r := crossing_range(c, prep.th, varying_speed=True))]
+    ranges = [r for c in crossings(prep) if math.isfinite(r := crossing_range(c, prep.th))]
     if len(ranges) < MIN_RANGE_BRANCHES:
         return levels, ""
     z_range = float(np.median(ranges))
@@ -412,14 +412,13 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             raise IdentificationError(str(e) if str(e).startswith(r.source) else f"{r.source}: {e}") from None
     for pr in preps:
         notes.extend(f"{pr.source}: {m}" for m in pr.notes + pr.th.notes)
-    per_file, swept = [], []
+    per_file = []
     for pr in preps:
         lv = constant_velocity_levels(pr)
         if "rel_tol" not in (thresholds or {}):
             lv, widened = widened_levels(pr, lv)
             if widened:
                 notes.append(f"{pr.source}: {widened}")
-        swept.append(has_speed_sweep(lv))
         hint = sign_hint(pr, lv)
         notes.append(f"{pr.source}: {len(lv.velocity)} constant-velocity level(s) "
                      f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)"
@@ -465,7 +464,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     datasets = []
     short = []  # (crossing range, resolution) of recordings whose reversals resolve no presliding
     slow = levels.slowest_steady_speed()
-    for pr, sweep in zip(preps, swept):
+    for pr in preps:
         # presliding ends where gross sliding begins: below the slowest level; without levels
         # only the 97 % of D cut (F_s from the starting file) bounds the branches
         v_max = max(pr.th.v_floor, 0.3 * slow) if np.isfinite(slow) else np.inf
@@ -475,15 +474,13 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             # resolution: one encoder step, or one σ of a Gaussian sensor
             ds.x_noise = getattr(pr.position_noise, "step", None) or noise_sd(pr.position_noise)
             datasets.append(ds)
-        # without a sweep the strokes' speed varies (a crank): a crossing ends at the sliding
-        # friction of the speed it has reached, not at the stroke's level
-        mb = motion_branches(pr, varying_speed=not sweep)
+        mb = motion_branches(pr)
         if mb:
             ds = PreslidingData(mb, Gaussian(pr.th.f_noise), name=f"{pr.source} (motion-driven)")
             ds.x_noise = getattr(pr.position_noise, "step", None) or max(pr.th.x_noise, 1e-300)
             datasets.append(ds)
         seen = [] if fb or mb else [(r, float(c.dx[min(MIN_BRANCH_POINTS, len(c.dx)) - 1])) for c in crossings(pr)
-                                    if math.isfinite(r := crossing_range(c, pr.th, varying_speed=not sweep))]
+                                    if math.isfinite(r := crossing_range(c, pr.th))]
         if len(seen) >= MIN_RANGE_BRANCHES:
             # reversals whose crossing to sliding is over within the turn threshold, or within the
             # first samples after the turn: presliding the sensor or the sampling does not resolve

@@ -748,25 +748,27 @@ def sliding_swing(c: Crossing) -> np.ndarray:
     return out
 
 
-def crossing_end(c: Crossing, th: Thresholds, *, varying_speed: bool = False) -> tuple[int, float]:
+def crossing_end(c: Crossing, th: Thresholds) -> tuple[int, float]:
     """Where a crossing has caught up with sliding, and its swing there: the first sample past
-    90 % of the swing D to the stroke's level — or, where the friction falls back from a peak
-    first (F_s above the sliding friction reached: a contact that sticks, then slips), past
-    90 % of the swing to that peak. The peak is sought on the friction averaged over the
-    smoothing window, so that noise about a flat top makes none. With ``varying_speed`` (a
-    recording with no constant-velocity sweep: a crank's strokes) the swing at each sample is
-    to the sliding friction at its own speed (``sliding_swing``), where the stroke shows it:
-    on a stroke whose speed keeps rising with viscous friction, the level lies far beyond the
-    end of presliding, and a crossing run to it is gross sliding. (0, D) if it never gets
-    there."""
+    90 % of the swing to the sliding friction at the speed it has reached, as the same stroke
+    shows it after its fastest point (``sliding_swing``) — or past 90 % of the swing D to the
+    stroke's level, if that comes first or the stroke never slides that slowly. Where the
+    friction falls back from a peak first (F_s above the sliding friction reached: a contact
+    that sticks, then slips), past 90 % of the swing to that peak; the peak is sought on the
+    friction averaged over the smoothing window, so that noise about a flat top makes none.
+    Why the speed reached, not the level: on a stroke still speeding up (a crank's sinusoid,
+    or a fast level reached through a slow ramp) the level holds the viscous σ2·v of a speed
+    not yet reached, and a crossing run to it is gross sliding — on a joint made apart, swept
+    over constant speeds through a 150 °/s² ramp, one crossing ran 0.023 rad (100× the others)
+    to its level, and the transition curve's knots were placed along it. (0, D) if it never
+    gets there."""
     D = c.D
     past = np.flatnonzero(c.dF > 0.9 * D)
-    if varying_speed:
-        swing = sliding_swing(c)
-        near = np.flatnonzero((swing > 20 * th.f_noise) & (c.dF > 0.9 * swing))
-        if len(near) and (not len(past) or near[0] < past[0]):
-            D = float(swing[near[0]])
-            past = near
+    swing = sliding_swing(c)
+    near = np.flatnonzero((swing > 20 * th.f_noise) & (c.dF > 0.9 * swing))
+    if len(near) and (not len(past) or near[0] < past[0]):
+        D = float(swing[near[0]])
+        past = near
     smooth = moving_average(c.dF, max(th.window, 3))
     top = np.maximum.accumulate(smooth)
     fell = np.flatnonzero(top - smooth > max(PEAK_DROP * D, 3.0 * th.f_noise))
@@ -779,23 +781,22 @@ def crossing_end(c: Crossing, th: Thresholds, *, varying_speed: bool = False) ->
 MIN_BRANCH_POINTS = 5  # a motion-driven branch needs this many samples before its end
 
 
-def motion_branches(prep: Prepared, *, min_points: int = MIN_BRANCH_POINTS, varying_speed: bool = False) -> list[Branch]:
+def motion_branches(prep: Prepared, *, min_points: int = MIN_BRANCH_POINTS) -> list[Branch]:
     """Reversals of a prescribed motion with measured friction (``crossings``): each crossing,
     up to its end (``crossing_end``), is one branch with the displacement from the reversal as
     input and the friction change as the measured output. D = the swing to where sliding
-    takes over (eq. (5) at the sliding velocity reached). ``varying_speed``: see
-    ``crossing_end``."""
+    takes over (eq. (5) at the sliding velocity reached)."""
     out = []
     for c in crossings(prep):
-        m, D = crossing_end(c, prep.th, varying_speed=varying_speed)
+        m, D = crossing_end(c, prep.th)
         if m < min_points or c.dx[m - 1] <= prep.th.x_turn:
             continue
         out.append(Branch(force=c.dF[:m], displacement=c.dx[:m], D=D, driven="motion"))
     return out
 
 
-def crossing_range(c: Crossing, th: Thresholds, *, varying_speed: bool = False) -> float:
+def crossing_range(c: Crossing, th: Thresholds) -> float:
     """How far a crossing travels before the friction has caught up with sliding
     (``crossing_end``); nan if it never does."""
-    m, _ = crossing_end(c, th, varying_speed=varying_speed)
+    m, _ = crossing_end(c, th)
     return float(c.dx[m]) if m else math.nan
