@@ -27,8 +27,8 @@ from .data import Recording
 from .errors import IdentificationError
 from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest, stribeck_plus_viscous
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, Prepared, constant_velocity_levels, crossing_range, crossings,
-                      force_branches, motion_branches, noise_sd, prepare, sliding_levels)
+from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, constant_velocity_levels, crossing_range,
+                      crossings, force_branches, motion_branches, noise_sd, prepare, sliding_levels)
 from .threads import one_blas_thread
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
@@ -109,6 +109,9 @@ def left_out(levels: Levels, unit: str = "") -> str:
                      f"back, not sliding)")
     if levels.creep:
         parts.append(f"{levels.creep} run(s) of creep (weak or short beside the other levels: segment.sliding_only)")
+    if levels.trend_alone:
+        parts.append(f"{levels.trend_alone} run(s) whose friction trends, on a side with under {TREND_BESIDE} settled "
+                     f"levels and too few speeds to make a sweep of their own")
     if parts:
         said = "; left out: " + " and ".join(parts)
     if levels.trended is not None:
@@ -124,10 +127,17 @@ def left_out(levels: Levels, unit: str = "") -> str:
 
 
 def sign_hint(prep: Prepared, levels: Levels) -> str:
-    """What to try when every steady run of a measured friction opposed its velocity: sliding
-    dissipates, so the column's sign is then the likelier fault ("" otherwise)."""
-    if prep.rec.friction is None or len(levels.velocity) or levels.opposing < 2:
+    """What to try when every steady run of a measured friction, or of an applied force,
+    opposed its velocity: sliding dissipates, so the column's sign is then the likelier fault
+    ("" otherwise)."""
+    if len(levels.velocity) or levels.opposing < 2:
         return ""
+    if prep.rec.friction is None:
+        # an applied force is read as pushing the way the position increases (eq. (8)); no
+        # convention is guessed for it (a vertical axis holds a weight both ways), so say it
+        return (f"every steady run's applied force ({levels.opposing}) opposes its velocity, where sliding takes a "
+                f"force pushing the way it moves: the force column likely has the other sign (the model's applied "
+                f"force pushes the position up; negate the column in the file)")
     taken = "reaction (flipped)" if prep.sign_flipped else "action"
     return (f"every steady run's friction ({levels.opposing}) opposes its velocity with the friction "
             f"taken as {taken}: the column likely has the other sign (--friction-sign auto detects it, or force "
@@ -513,6 +523,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     if n_br and knots is None:
         try:
             z = knots_from_data(datasets, n)
+            if len(z) - 1 < len(KNOT_FRACTIONS):
+                # the sensor's resolution, not the contact, set how many segments the curve has
+                notes.append(f"transition curve: {len(z) - 1} knot(s), not {len(KNOT_FRACTIONS)}: the others fell "
+                             f"within {RESOLVED:g} × the position resolution ({min(d.x_noise for d in datasets):.3g}) "
+                             f"of a knot already placed, and the sensor does not tell them apart")
         except UnresolvedCurve as e:
             # presliding shorter than the position sensor resolves (an encoder step as long as the
             # whole transition): the curve is held, said so, and S(v) is still fitted
@@ -624,6 +639,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         held["n"] = f"{why_curve}: kept {start}"
     if all(d.fit is None for d in decisions.values()) and tfit is None:
         files = ", ".join(str(pr.source) for pr in preps)
+        # a sign that hid every level is the cause to mend: what else failed follows from it
+        hints = "; ".join(f"{pr.source}: {h}" for pr, lv in zip(preps, per_file) if (h := sign_hint(pr, lv)))
+        if hints:
+            raise IdentificationError(f"nothing to fit: {hints}")
         if unresolved:
             raise IdentificationError(f"{files}: nothing to fit: no constant-velocity levels, and {unresolved} (a finer "
                                       f"position sensor, or --params to start from)")
@@ -631,9 +650,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             raise IdentificationError(f"{files}: nothing to fit: no constant-velocity levels, and {why_curve} (the segments "
                                       f"ran to their limit): more presliding cycles, or --params to start from")
         raise IdentificationError(f"{files}: nothing to fit: the data hold neither constant-velocity levels nor presliding "
-                                  "branches (force ramps with reversals, or reversals of a motion with measured friction)"
-                                  + "".join(f"; {pr.source}: {h}" for pr, lv in zip(preps, per_file)
-                                            if (h := sign_hint(pr, lv))))
+                                  "branches (force ramps with reversals, or reversals of a motion with measured friction)")
     # the model an inertia is read beside takes σ1 at the data's scale (``_held_inertia``): the σ1
     # held below, at the stuck plant's damping ratio, needs the inertia being read, and the
     # built-in default is another machine's; imported here, as the refinement below is, so

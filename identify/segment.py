@@ -28,7 +28,7 @@ from scipy.signal import savgol_filter
 
 from .data import Recording
 from .errors import DataError, IdentificationError
-from .markov import Levels
+from .markov import STRIBECK_MIN_SPEEDS, Levels, distinct_speeds
 from .mle import Branch, Gaussian, Quantized
 
 
@@ -428,16 +428,19 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     if not trend[0]:
         return sliding_only(runs)
     runs = sliding_only(Levels.joined([runs, levels(trend, trended=np.ones(len(trend[0]), bool))]))
-    # trending runs add to a sweep, they make none: on a side with fewer than three settled
-    # levels (where creep is not told either, ``sliding_only``) they are left out (a robot
-    # joint swept one way only: its one slow return, creeping under a torque ramp, read 7.4
-    # N·m for an F_s of 14.9)
+    # trending runs add to a sweep; alone, only a sweep of them makes one: on a side with fewer
+    # than three settled levels (where creep is not told either, ``sliding_only``) they are
+    # left out, and counted (a robot joint swept one way only: its one slow return, creeping
+    # under a torque ramp, read 7.4 N·m for an F_s of 14.9) — unless they span a sweep's
+    # speeds themselves (a cylinder made apart under a load changing all session: each of its
+    # 20 positive runs trended, over 9 speeds, and that side was mirrored from the other)
     keep = np.ones(len(runs.velocity), bool)
     for sign in (1.0, -1.0):
         side = runs.velocity * sign > 0
-        if np.sum(side & ~runs.is_trended) < TREND_BESIDE:
-            keep &= ~(side & runs.is_trended)
-    return runs if keep.all() else runs.kept(keep)
+        alone = side & runs.is_trended
+        if np.sum(side & ~runs.is_trended) < TREND_BESIDE and distinct_speeds(runs.velocity[alone]) < STRIBECK_MIN_SPEEDS:
+            keep &= ~alone
+    return runs if keep.all() else runs.kept(keep, trend_alone=int(np.sum(~keep)))
 
 
 # a trending run is a point of S(v) if its friction moved (relative) this many times more than its speed

@@ -496,6 +496,22 @@ def test_runs_left_out_are_counted_and_said():
     assert left_out(Levels(v, np.full(5, 5.0), np.full(5, 1e-4), np.full(5, 700.0))) == ""
 
 
+def test_an_applied_force_logged_with_the_other_sign_is_told_so_first():
+    # a linear stage's drive force negated in the file: every steady run's force opposes its
+    # velocity, so no level of S(v) is found and the branches bound nothing. The one-line error
+    # names that cause and the mend, not "more presliding cycles"
+    df, _ = make_recording("linear_stage", 2)
+    df["Force [N]"] = -df["Force [N]"]
+    with pytest.raises(IdentificationError) as e:
+        fit_recordings([_rec(df, "stage.csv")], refine=False)
+    msg = str(e.value)
+    assert "\n" not in msg and msg.startswith("nothing to fit: stage.csv: every steady run's applied force"), msg
+    assert "negate the column" in msg and "presliding cycles" not in msg, msg
+    # the file as logged fits, with no such hint
+    res = fit_recordings([_rec(make_recording("linear_stage", 2)[0], "stage.csv")], refine=False)
+    assert not any("other sign" in n for n in res.notes)
+
+
 def test_a_friction_column_forced_to_the_wrong_sign_is_told_to_try_the_other():
     # the tribometer logs friction as a reaction; forced to "action", every steady run opposes
     # its velocity: the fit has nothing to fit, and says the sign is the likely cause

@@ -1,0 +1,86 @@
+"""`fit` then `diagnose` on a hydraulic servo cylinder simulated apart from the project
+(``synth/hydraulic_cylinder.py``: 250 kg under a PID position loop through a valve lag, five
+regularised elasto-plastic seal elements under an asymmetric Lorentzian Stribeck limit, RK4 at
+20 kHz logged at 1 kHz; time in ms, position in mm on a 1 µm scale, the cylinder force in kN
+with noise and an offset, chamber pressures and a commanded speed as extra columns; 108,000
+rows). Every expectation is the simulator's own constant, not a number the tool printed."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+import yaml
+
+from leuven_friction.app.cli import main
+from synth import hydraulic_cylinder as H
+
+
+def _fit(tmp_path, case):
+    csv, base = tmp_path / f"{case}.csv", tmp_path / f"{case}.yaml"
+    truth = H.record(str(csv), case)
+    assert main(["fit", str(csv), "--out", str(base)]) == 0
+    return truth, csv, base
+
+
+def _diagnose(tmp_path, csv, base):
+    out = tmp_path / "cylinder.json"
+    assert main(["diagnose", str(csv), "--params", str(base), "--json", str(out)]) == 0
+    return json.loads(out.read_text())
+
+
+def _written(rep, name):
+    return next(e for e in rep["written_effects"] if e["name"] == name)
+
+
+@pytest.mark.slow
+def test_a_load_changing_all_session_is_fitted_on_both_sides_and_named_alone(tmp_path, capsys):
+    # the side load swings ±50 % through the session, so every positive run's friction trends;
+    # those runs span the sweep's nine speeds, and the side is fitted from them rather than
+    # mirrored from the other (where a false softening had then been named beside the load)
+    truth, csv, base = _fit(tmp_path, "load")
+    out = capsys.readouterr().out
+    assert "(20 positive, 19 negative)" in out, out
+    p = yaml.safe_load(base.read_text())
+    assert not any("mirrored" in why for why in p["provenance"]["held"].values()), p["provenance"]["held"]
+    # averaged over the loads (0.5–1.5 N0), each Coulomb level lies within the range the loads
+    # make of it, within twice its stated σ (the load and S(v) share the levels: σ says how much)
+    lo, hi = 0.5 ** truth["effect"]["alpha"], 1.5 ** truth["effect"]["alpha"]
+    for side, fc in (("positive", truth["params_SI"]["Fc_p"]), ("negative", truth["params_SI"]["Fc_n"])):
+        est, sd = abs(p["stribeck"][side]["Fc"]), p["uncertainty"][f"stribeck.{side}.Fc"]
+        assert lo * fc - 2 * sd < est < hi * fc + 2 * sd, (side, est, sd)
+    rep = _diagnose(tmp_path, csv, base)
+    assert rep["effects"] == ["normal_load"], rep["effects"]
+    load = _written(rep, "normal_load")
+    assert abs(load["params"]["alpha"] - truth["effect"]["alpha"]) < 3 * load["sd"]["alpha"] + 0.05, load
+
+
+@pytest.mark.slow
+def test_a_ripple_along_the_stroke_is_named_with_the_simulators_wavelength(tmp_path):
+    truth, csv, base = _fit(tmp_path, "ripple")
+    rep = _diagnose(tmp_path, csv, base)
+    assert rep["effects"] == ["position_ripple"], rep["effects"]
+    rip = _written(rep, "position_ripple")
+    lam, a = truth["effect"]["lam"], truth["effect"]["a"]
+    assert abs(rip["params"]["wavelength"] - lam) < 3 * rip["sd"]["wavelength"] + 0.01 * lam, rip
+    assert abs(rip["params"]["a"] - a) < 3 * rip["sd"]["a"] + 0.01, rip
+
+
+@pytest.mark.slow
+def test_the_control_names_nothing_and_its_force_negated_is_refused_saying_so(tmp_path, capsys):
+    truth, csv, base = _fit(tmp_path, "control")
+    rep = _diagnose(tmp_path, csv, base)
+    assert rep["effects"] == [], rep["effects"]
+    # the same file with the force column negated: no run's force pushes the way it moves, and
+    # the one-line refusal names the sign, not a want of data; nothing is written
+    df = pd.read_csv(csv)
+    df["force [kN]"] = -df["force [kN]"]
+    flipped, out = tmp_path / "flipped.csv", tmp_path / "flipped.yaml"
+    df.to_csv(flipped, index=False)
+    capsys.readouterr()
+    assert main(["fit", str(flipped), "--out", str(out)]) != 0
+    err = capsys.readouterr().err
+    said = [line for line in err.splitlines() if line.startswith("error:")]
+    assert len(said) == 1 and "applied force" in said[0] and "negate the column" in said[0], err
+    assert "Traceback" not in err and "presliding cycles" not in said[0], err
+    assert not out.exists()
