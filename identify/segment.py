@@ -310,23 +310,27 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
                      f"acted on (name it with --columns position=<column>)"
                      + (f"; not read: {_listing_short(rec.ignored)}" if rec.ignored else ""))
     if rec.normal_load is not None:
-        N = rec.normal_load
+        # the plateau is sought on the load averaged over the window: a sample off it by its
+        # sensor's noise alone is on it (a constant 20 kN with 1 % noise had 37 single samples
+        # left out against its raw 95th percentile, splitting 3 runs into 6 levels)
+        N = moving_average(rec.normal_load, th.window)
         N0 = float(np.quantile(N, 0.95))
-        th.load_tol = max(5.0 * white_noise_sd(N), 0.02 * abs(N0))
+        th.load_tol = max(5.0 * white_noise_sd(rec.normal_load), 0.02 * abs(N0))
     th.override(overrides)
     if rec.normal_load is not None:
-        usable = np.abs(rec.normal_load - N0) <= th.load_tol
+        usable = np.abs(N - N0) <= th.load_tol
         if usable.mean() >= MIN_PLATEAU_SHARE:
             notes.append(f"normal load: plateau {N0:.4g} N; {int((~usable).sum())} samples off the plateau "
-                         f"(|N - N0| > {th.load_tol:.3g} N) left out")
+                         f"(|N - N0| > {th.load_tol:.3g} N, N averaged over the window) left out")
         else:
             # a load that varies through the session (a schedule, a drifting contact): keeping
             # only its plateau would leave too little to fit; the base model then averages over
             # the loads, and `diagnose` tells whether the friction follows them
             notes.append(f"normal load: no plateau (only {100 * usable.mean():.0f} % of the samples within "
-                         f"{th.load_tol:.3g} N of its 95th percentile {N0:.4g} N; it ranges {np.min(N):.4g}–"
-                         f"{np.max(N):.4g} N): every sample is used, S(v) and the transition curve average over "
-                         f"the loads (run diagnose to see whether friction follows the load)")
+                         f"{th.load_tol:.3g} N of its 95th percentile {N0:.4g} N; it ranges "
+                         f"{np.min(rec.normal_load):.4g}–{np.max(rec.normal_load):.4g} N): every sample is used, "
+                         f"S(v) and the transition curve average over the loads (run diagnose to see whether "
+                         f"friction follows the load)")
             usable = np.ones(n, dtype=bool)
     flipped = False
     friction = rec.friction
@@ -433,7 +437,7 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     # left out, and counted (a robot joint swept one way only: its one slow return, creeping
     # under a torque ramp, read 7.4 N·m for an F_s of 14.9) — unless they span a sweep's
     # speeds themselves (a cylinder made apart under a load changing all session: each of its
-    # 20 positive runs trended, over 9 speeds, and that side was mirrored from the other)
+    # 20 positive runs trended, over 10 speeds, and that side was mirrored from the other)
     keep = np.ones(len(runs.velocity), bool)
     for sign in (1.0, -1.0):
         side = runs.velocity * sign > 0
@@ -733,13 +737,17 @@ def crossings(prep: Prepared) -> list[Crossing]:
 PEAK_DROP = 0.05  # of the swing D (and at least 3 friction-noise sds): a fall from a crossing's peak that ends it
 
 
-def sliding_swing(c: Crossing) -> np.ndarray:
+def sliding_swing(c: Crossing, window: int) -> np.ndarray:
     """Along a crossing, the swing to the sliding friction at the speed of each sample, as the
     same stroke shows it after its fastest point (slowing down towards the next reversal, far
     from the last one): for a stroke whose speed varies (a crank's sinusoid) the friction
     slides at S(v) + σ2·v of the speed it has, not at a level. nan where the stroke never
-    slides that slowly (or fast) after its fastest point."""
-    top = int(np.argmax(c.speed))
+    slides that slowly (or fast) after its fastest point. That point is the last where the
+    speed, averaged over ``window`` samples, is within 5 % of its top: on a stroke at a
+    constant speed reached within presliding, the one fastest noisy sample may lie inside
+    presliding, and the "sliding" friction read after it would hold presliding values."""
+    smooth = moving_average(c.speed, max(int(window), 3))
+    top = int(np.flatnonzero(smooth >= np.max(smooth) - 0.05 * abs(np.max(smooth)))[-1])
     sp, f = c.speed[top:], c.dF[top:]
     order = np.argsort(sp)
     sp, f = sp[order], f[order]
@@ -767,7 +775,7 @@ def crossing_end(c: Crossing, th: Thresholds) -> tuple[int, float]:
     gets there."""
     D = c.D
     past = np.flatnonzero(c.dF > 0.9 * D)
-    swing = sliding_swing(c)
+    swing = sliding_swing(c, th.window)
     near = np.flatnonzero((swing > 20 * th.f_noise) & (c.dF > 0.9 * swing))
     if len(near) and (not len(past) or near[0] < past[0]):
         D = float(swing[near[0]])

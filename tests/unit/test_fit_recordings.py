@@ -6,6 +6,7 @@ the generator's truth, held parameters named, scale and time-scale invariance, l
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from leuven_friction.identify.data import load_recording
@@ -323,6 +324,31 @@ def test_a_load_varying_through_the_session_is_fitted_over_all_loads(kind):
         assert 0.9 * np.min(scale) * Fc_true < Fc_fit < 1.1 * np.max(scale) * Fc_true
 
 
+def test_a_constant_load_with_sensor_noise_is_one_plateau_and_a_step_off_it_is_left_out():
+    # a tribometer's normal load constant at its set value, logged with 1 % white noise: no
+    # sample is off its plateau (single samples 3.4 σ low had been, splitting runs into more
+    # levels). The same load stepped 20 % down over a tenth of the session: that tenth is
+    # left out, within a window at each edge
+    from leuven_friction.identify.segment import prepare
+
+    df, _ = make_recording("tribometer", 3)
+    col = "Normal [uN]"
+    rng = np.random.default_rng(0)
+    level = float(np.median(df[col]))
+    df[col] = level + rng.normal(0, 0.01 * level, len(df))
+    prep = prepare(_rec(df, "tri.tsv", "\t"))
+    assert prep.usable.all(), int((~prep.usable).sum())
+    n = len(df)
+    step = np.zeros(n, bool)
+    step[n // 2:n // 2 + n // 10] = True
+    df.loc[step, col] *= 0.8
+    prep = prepare(_rec(df, "tri.tsv", "\t"))
+    off = ~prep.usable
+    w = prep.th.window
+    assert np.all(off[n // 2 + w:n // 2 + n // 10 - w]) and not np.any(off[:n // 2 - w]), int(off.sum())
+    assert abs(int(off.sum()) - n // 10) <= w, (int(off.sum()), n // 10, w)
+
+
 @pytest.mark.parametrize("seed", [2, 1])
 def test_presliding_shorter_than_an_encoder_step_holds_the_curve_and_still_fits_sv(seed):
     # another generator (synth/elsewhere.py: GMS elements, a PID at 500 Hz, an 18-bit encoder of
@@ -479,6 +505,40 @@ def test_refinement_leaves_the_first_curve_to_the_machines_history(kind, seed):
     inner = (z > 0) & (z <= 0.6 * z[-1])
     err = np.abs(F[inner] / truth.transition_curve(z[inner]) - 1.0)
     assert np.median(err) < 0.25, err
+
+
+def _one_side_trending(n_speeds: int):
+    """A slide run out at ``n_speeds`` speeds and back at as many others: each outward run's
+    friction rises 30 % along it (a load coming on), each return's holds (10 N, 0.02 N noise)."""
+    rate, rng = 1000.0, np.random.default_rng(1)
+    x, F = [0.0], [0.0]
+    for v_out, v_back in zip(np.geomspace(1e-3, 2e-2, n_speeds), np.geomspace(1.5e-3, 3e-2, n_speeds)):
+        for v, k in ((v_out, 1.0), (-v_back, 0.0)):
+            n = int(2.0 * rate)
+            ramp = 1.0 + 0.3 * k * np.arange(n) / n
+            x += list(x[-1] + v / rate * np.arange(1, n + 1))
+            F += list(np.sign(v) * 10.0 * ramp + rng.normal(0, 0.02, n))
+            x += [x[-1]] * int(0.5 * rate)
+            F += [0.0] * int(0.5 * rate)
+    x = np.array(x) + rng.normal(0, 1e-7, len(x))
+    return pd.DataFrame({"time [s]": np.arange(len(x)) / rate, "position [m]": x, "friction [N]": F})
+
+
+@pytest.mark.parametrize("n_speeds, kept", [(3, False), (4, True)])
+def test_a_side_of_trending_runs_alone_counts_as_a_sweep_only_over_four_speeds(n_speeds, kept):
+    # no settled level on the outward side: its trending runs are a sweep of S(v) only where
+    # they span four speeds or more (a load moving all session); fewer are left out and counted
+    from leuven_friction.identify.fit import left_out
+    from leuven_friction.identify.segment import constant_velocity_levels, prepare
+
+    lv = constant_velocity_levels(prepare(_rec(_one_side_trending(n_speeds), "slide.csv")))
+    out = lv.velocity > 0
+    assert int(np.sum(lv.velocity < 0)) == n_speeds and not lv.is_trended[~out].any()
+    if kept:
+        assert int(out.sum()) == n_speeds and lv.is_trended[out].all() and lv.trend_alone == 0
+    else:
+        assert not out.any() and lv.trend_alone == n_speeds
+        assert f"{n_speeds} run(s) whose friction trends, on a side with under 3 settled levels" in left_out(lv)
 
 
 def test_runs_left_out_are_counted_and_said():
