@@ -48,3 +48,16 @@ def test_product_imports_no_checkout_tool_and_its_own_parts_relatively():
         for py in (ROOT / folder).rglob("*.py"):
             for level, module in _imports(py):
                 assert not (level == 0 and tools.match(module)), f"{py.relative_to(ROOT)} imports {module}"
+
+
+def test_the_checkout_imports_its_parts_without_an_install():
+    # `python -c` in the repository root puts that folder first on sys.path, where
+    # leuven_friction/ holds only __init__.py: without an editable install's finder the parts,
+    # which sit beside it, were not found (ModuleNotFoundError: leuven_friction.identify)
+    import subprocess
+    import sys
+
+    code = ("import sys; sys.meta_path[:] = [f for f in sys.meta_path if 'editable' not in repr(f).lower()]; "
+            "import leuven_friction.identify.fit as f, leuven_friction.app.cli as c; print(f.__file__); print(c.__file__)")
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True).stdout
+    assert [Path(p) for p in out.split()] == [ROOT / "identify" / "fit.py", ROOT / "app" / "cli.py"], out
