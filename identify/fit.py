@@ -520,14 +520,15 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     n_br = sum(len(d.branches) for d in datasets)
     tfit = None
     unresolved = None
+    sensor_resolution = min((d.x_noise for d in datasets), default=math.nan)  # the finest position sensor's
     if n_br and knots is None:
         try:
             z = knots_from_data(datasets, n)
             if len(z) - 1 < len(KNOT_FRACTIONS):
                 # the sensor's resolution, not the contact, set how many segments the curve has
                 notes.append(f"transition curve: {len(z) - 1} knot(s), not {len(KNOT_FRACTIONS)}: the others fell "
-                             f"within {RESOLVED:g} × the position resolution ({min(d.x_noise for d in datasets):.3g}) "
-                             f"of a knot already placed, and the sensor does not tell them apart")
+                             f"within {RESOLVED:g} × the position resolution ({sensor_resolution:.3g}) of a knot already "
+                             f"placed, and the sensor does not tell them apart")
         except UnresolvedCurve as e:
             # presliding shorter than the position sensor resolves (an encoder step as long as the
             # whole transition): the curve is held, said so, and S(v) is still fitted
@@ -588,12 +589,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         tfit = None
         n_br = 0
         reaches = np.array([branch_z(b, n)[-1] for b in observed_branches(datasets)])
-        resolution = min(d.x_noise for d in datasets)
-        if knots is None and len(reaches) and np.median(reaches) < RESOLVED * resolution:
+        if knots is None and len(reaches) and np.median(reaches) < RESOLVED * sensor_resolution:
             # most branches never left two encoder steps (or noise σ): the few that did went
             # further than presliding reaches (they slid, under a controller's push) and bound
             # nothing; the presliding is not resolved
-            unresolved = UnresolvedCurve(float(np.median(reaches)), resolution)
+            unresolved = UnresolvedCurve(float(np.median(reaches)), sensor_resolution)
             notes.append(f"transition curve: half the branches or more reach {unresolved.reach:.3g} at most: "
                          f"{unresolved}" + picked_on_few)
             unbounded = 0.0

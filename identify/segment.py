@@ -442,7 +442,8 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     for sign in (1.0, -1.0):
         side = runs.velocity * sign > 0
         alone = side & runs.is_trended
-        if np.sum(side & ~runs.is_trended) < TREND_BESIDE and distinct_speeds(runs.velocity[alone]) < STRIBECK_MIN_SPEEDS:
+        settled = int(np.sum(side & ~runs.is_trended))
+        if settled < TREND_BESIDE and distinct_speeds(runs.velocity[alone]) < STRIBECK_MIN_SPEEDS:
             keep &= ~alone
     return runs if keep.all() else runs.kept(keep, trend_alone=int(np.sum(~keep)))
 
@@ -747,7 +748,8 @@ def sliding_swing(c: Crossing, window: int) -> np.ndarray:
     constant speed reached within presliding, the one fastest noisy sample may lie inside
     presliding, and the "sliding" friction read after it would hold presliding values."""
     smooth = moving_average(c.speed, max(int(window), 3))
-    top = int(np.flatnonzero(smooth >= np.max(smooth) - 0.05 * abs(np.max(smooth)))[-1])
+    peak = float(np.max(smooth))
+    top = int(np.flatnonzero(smooth >= peak - 0.05 * abs(peak))[-1])
     sp, f = c.speed[top:], c.dF[top:]
     order = np.argsort(sp)
     sp, f = sp[order], f[order]

@@ -17,3 +17,4 @@ _root = _os.path.dirname(_os.path.dirname(__file__))
 if not _os.path.isdir(_os.path.join(_os.path.dirname(__file__), "model")) and _os.path.isfile(
         _os.path.join(_root, "model", "__init__.py")):
     __path__.append(_root)
+del _os, _root

@@ -114,6 +114,14 @@ def simulate(seed, effect=None, stiff_scale=1.0, fric_scale=1.0, T=120.0):
     return t, enc, meas, truth, F
 
 
+def write(path, t, angle, torque, decimals=7):
+    """The recording as logged: time [s], the encoder angle [deg] to ``decimals`` places (7 holds
+    a 19-bit count), the measured torque [N·mm]."""
+    with open(path, 'w') as fh:
+        fh.write('time [s],joint_angle [deg],friction_torque [N·mm]\n')
+        fh.writelines(f'{a:.3f},{b:.{decimals}f},{c:.3f}\n' for a, b, c in zip(t, angle, torque))
+
+
 if __name__ == '__main__':
     cases = [('control', 11, None, 1, 1), ('drift', 12, 'drift', 1, 1), ('ripple', 13, 'ripple', 1, 1),
              ('softening', 14, 'softening', 1, 1), ('control2', 77, 'control2', 5, 3)]
@@ -124,10 +132,7 @@ if __name__ == '__main__':
     for name, seed, eff, ks, fs in cases:
         if only and name not in only: continue
         t, enc, meas, truth, F = simulate(seed, eff, ks, fs)
-        with open(os.path.join(out, f'{name}.csv'), 'w') as fh:
-            fh.write('time [s],joint_angle [deg],friction_torque [N·mm]\n')
-            for a, b, c in zip(t, enc, meas):
-                fh.write(f'{a:.3f},{b:.7f},{c:.3f}\n')
+        write(os.path.join(out, f'{name}.csv'), t, enc, meas)
         json.dump(truth, open(os.path.join(out, f'{name}_truth.json'), 'w'), indent=1)
         print(name, len(t), 'range deg', enc.min(), enc.max(), 'nrev', truth['nrev_total'],
               '|F| max', np.abs(F).max())

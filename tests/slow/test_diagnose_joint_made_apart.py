@@ -21,9 +21,7 @@ DEG = math.pi / 180.0
 def _record(tmp_path, seed, effect):
     t, angle, torque, truth, _ = J.simulate(seed, effect)
     csv = tmp_path / "joint.csv"
-    with open(csv, "w") as fh:
-        fh.write("time [s],joint_angle [deg],friction_torque [N·mm]\n")
-        fh.writelines(f"{a:.3f},{b:.7f},{c:.3f}\n" for a, b, c in zip(t, angle, torque))
+    J.write(csv, t, angle, torque)
     base = tmp_path / "joint.yaml"
     assert main(["fit", str(csv), "--out", str(base)]) == 0
     out = tmp_path / "joint.json"

@@ -6,24 +6,22 @@ can have — and the report says so."""
 import math
 
 import numpy as np
-import pytest
 
 from leuven_friction.identify.data import load_recording
 from leuven_friction.identify.fit import RESOLVED, fit_recordings
 from synth import joint_maxwell_slip_logged as J
 
 
-def _fit(monkeypatch, count_deg):
+def _fit(monkeypatch, tmp_path, count_deg):
     monkeypatch.setattr(J, "CNT", count_deg)
     t, angle, torque, _, _ = J.simulate(77, "control2", stiff_scale=5, fric_scale=3, T=40.0)
-    text = "time [s],joint_angle [deg],friction_torque [N·mm]\n" + "".join(
-        f"{a:.3f},{b:.9f},{c:.3f}\n" for a, b, c in zip(t, angle, torque))
-    return fit_recordings([load_recording(text.encode(), name="joint.csv")], refine=False)
+    J.write(tmp_path / "joint.csv", t, angle, torque, decimals=9)  # 9 places hold the 27-bit count
+    return fit_recordings([load_recording(tmp_path / "joint.csv")], refine=False)
 
 
-def test_a_curve_cut_short_by_the_encoder_says_the_sensor_set_its_knots(monkeypatch):
+def test_a_curve_cut_short_by_the_encoder_says_the_sensor_set_its_knots(monkeypatch, tmp_path):
     step = J.CNT * math.pi / 180.0  # one count of the 19-bit encoder, in rad
-    res = _fit(monkeypatch, J.CNT)
+    res = _fit(monkeypatch, tmp_path, J.CNT)
     z = np.array(res.params.transition_curve.z)
     note = [n for n in res.notes if "the sensor does not tell them apart" in n]
     assert len(z) - 1 < 6 and len(note) == 1, (z, res.notes)
@@ -31,7 +29,7 @@ def test_a_curve_cut_short_by_the_encoder_says_the_sensor_set_its_knots(monkeypa
     assert np.all(np.diff(z) >= RESOLVED * step * (1 - 1e-9)), z
 
 
-def test_the_same_contact_through_a_fine_encoder_has_every_knot_and_no_such_note(monkeypatch):
-    res = _fit(monkeypatch, J.CNT / 256)  # a 27-bit encoder
+def test_the_same_contact_through_a_fine_encoder_has_every_knot_and_no_such_note(monkeypatch, tmp_path):
+    res = _fit(monkeypatch, tmp_path, J.CNT / 256)  # a 27-bit encoder
     assert len(res.params.transition_curve.z) == 7, res.params.transition_curve.z
     assert not any("the sensor does not tell them apart" in n for n in res.notes), res.notes
