@@ -90,7 +90,8 @@ from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
 from .data import DataError, Recording
 from .errors import IdentificationError
-from .segment import checked_threshold, gross_sliding_mask, local_slope, speed_levels, steady_velocity_mask
+from .segment import (across_gaps, checked_threshold, gap_threshold, gross_sliding_mask, piecewise_slope, speed_levels,
+                      steady_velocity_mask, time_gaps)
 from .threads import one_blas_thread
 
 
@@ -564,9 +565,9 @@ def motion_reading(rec: Recording, overrides: dict | None = None) -> MotionReadi
         raise DataError(f"--threshold window={user['window']}: longer than half of {rec.source}'s {len(t)} samples")
     dt = float(np.median(np.diff(t)))
     cp = compared_path(x, dt, user.get("window"))
-    # the sampling may change within a record (parts logged at different rates, gaps): the
-    # slope is taken against the actual times, as the fit does
-    vel = local_slope(t, x, cp.window, uniform=bool(np.ptp(np.diff(t)) <= 0.01 * dt))
+    # the sampling may change within a record (parts logged at different rates, samples lost):
+    # the slope is taken against the actual times and never across a gap, as the fit does
+    vel = piecewise_slope(t, x, cp.window, gap_threshold(t))
     v_noise = cp.sd * math.sqrt(12.0) / (cp.window**1.5 * dt)
     v_rest = user.get("v_rest", 3.0 * max(v_noise, (cp.step / (cp.window * dt)) if cp.step else 0.0))
     tacho = None
@@ -856,10 +857,12 @@ def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: fl
         coef, *_ = np.linalg.lstsq(X[mask], y[mask], rcond=None)
         return float(coef[-1])
 
+    gaps = time_gaps(t)
     est = {}
     for n_avg in (8 * L + 1, 32 * L + 1):
         acc = mean_acceleration(v, t, n_avg)
         steady = (np.abs(v) > v_rest) & (np.abs(acc) * n_avg * dt < 0.1 * np.abs(v))  # dt: the median interval
+        steady &= ~across_gaps(len(v), gaps, n_avg // 2 + 1)  # (a mean over samples either side of a gap)
         if steady.sum() < 50 * n_avg or np.std(acc[steady]) == 0:
             return InertiaReading(None, f"too little steady sliding to regress the force on the acceleration in "
                                         f"({int(steady.sum())} samples, at least {50 * n_avg} wanted over "
@@ -918,8 +921,10 @@ def _position_comparison(rec, params, t, x, f, vel, sdx, w, min_exc, v_rest, v_n
     # short windows: the open-loop plant must not run away from the measured motion (the
     # Stribeck branch is unstable), yet move far enough for the friction to show
     nwin = int(min(max(round(0.5 * tau_v / dt), 10), max(10, len(t) // 20)))
-    starts = list(range(0, len(t) - 1, nwin))
-    windows = [(a, min(a + nwin + 1, len(t))) for a in starts]
+    # no window runs across a time gap of the log: the plant would be integrated over a step
+    # whose applied force was not seen
+    edges = np.concatenate([[0], time_gaps(t), [len(t)]])
+    windows = [(a, min(a + nwin + 1, hi)) for lo, hi in zip(edges[:-1], edges[1:]) for a in range(lo, hi - 1, nwin)]
     windows = [wd for wd in windows if wd[1] - wd[0] >= 3]
     f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
     T = nwin * dt
@@ -2907,6 +2912,44 @@ def initial_memory(cmp_: Comparison) -> InitialMemory:
     return InitialMemory(scored, offset, float(cmp_.time[first]), t_known)
 
 
+@dataclass(frozen=True)
+class UnseenAtGaps:
+    """What the time gaps of a log hide from the comparison (``unseen_at_gaps``)."""
+
+    gaps: np.ndarray  # indices where the log resumes after a gap (``segment.time_gaps``)
+    mask: np.ndarray  # samples not compared because of them
+    threshold: float  # a step longer than this is a gap (s)
+    longest: float  # the longest gap (s)
+
+    def note(self) -> str:
+        return (f"{len(self.gaps)} time gap(s) in the log (steps over {self.threshold:.3g} s, five times the 99th "
+                f"percentile of the steps; the longest {self.longest:.3g} s): the motion there is not seen, so "
+                f"{int(self.mask.sum())} samples are not compared — those whose smoothing or averaging reaches across "
+                f"a gap, and after each gap those until the first gross sliding, the model's memory not holding what "
+                f"the contact did unseen")
+
+
+def unseen_at_gaps(cmp_: Comparison) -> UnseenAtGaps | None:
+    """Where the log has time gaps (samples lost, a pause): the samples whose path smoothing or
+    eq. (8)'s averaging reaches across one mix the motion before and after it with what was not
+    seen; and after a gap the contact's hysteresis memory (section III-B's stacks) may hold
+    reversals the log did not see, which only the next gross sliding wipes, as at the start of a
+    record (``initial_memory``). None where the log has no gap."""
+    t = cmp_.time
+    threshold = gap_threshold(t)
+    gaps = time_gaps(t, threshold)
+    if not len(gaps):
+        return None
+    n = len(t)
+    mask = across_gaps(n, gaps, max(cmp_.window, cmp_.average) // 2 + 1)
+    gs = gross_sliding(cmp_)
+    ends = np.concatenate([gaps[1:], [n]])
+    for g, end in zip(gaps, ends):
+        sliding = np.flatnonzero(gs[g:end] & ~mask[g:end])
+        mask[g:end if not len(sliding) else g + int(sliding[0])] = True
+    return UnseenAtGaps(gaps, mask, threshold, float(np.max(t[gaps] - t[gaps - 1])))
+
+
 def _rms(a) -> float:
     return float(np.sqrt(np.mean(a**2))) if len(a) else float("nan")
 
@@ -3001,6 +3044,10 @@ def scored_comparison(rec: Recording, params: FrictionParams, s: Settings) -> Co
         elif allm.all() and math.isnan(mem.t_known):
             cmp_.notes.append("the recording reverses late: the model's memory at its start (F_h = 0, the outer loop "
                               "only) is assumed for every sample")
+    unseen = unseen_at_gaps(cmp_)
+    if unseen is not None:
+        allm = allm & ~unseen.mask
+        cmp_.notes.append(unseen.note())
     if cmp_.inertia is not None:
         rest = unresolved_rest(cmp_)
         if rest.unresolved and (allm & ~rest.mask).sum() < REST_MIN_LEFT * allm.sum():
