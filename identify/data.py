@@ -493,7 +493,28 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                "the rows if they are out of order")
         raise DataError(f"{path}: column {rec.columns['time']!r} row {row_of(r)}: time {raw.iloc[r]} does not "
                         f"increase (previous {raw.iloc[r - 1]}): {why}")
+    if rec.position is not None and rec.units.get("position") == "rad":
+        wraps = turn_wraps(rec.position)
+        if len(wraps):
+            rec.position = np.unwrap(rec.position, period=2.0 * np.pi)
+            notes.append(f"{rec.columns['position']}: the angle wraps at one turn ({len(wraps)} time(s), first at row "
+                         f"{row_of(int(wraps[0]) + 1)}): unwrapped to a continuous angle")
     return rec
+
+
+def turn_wraps(angle: np.ndarray) -> np.ndarray:
+    """Indices i where an angle (rad) logged modulo one turn wraps between samples i and i + 1:
+    a step over half a turn that is a whole number of turns to within a tenth of one, on an
+    axis whose median step is under a hundredth of a turn (a log that samples the motion turns
+    far less than half a turn between two samples, and a position with noise that large is no
+    angle logged modulo a turn).
+    Empty where there is no such wrap, or where a step over half a turn is not one."""
+    d = np.diff(angle)
+    big = np.flatnonzero(np.abs(d) > np.pi)
+    if not len(big) or np.median(np.abs(d)) > 2e-2 * np.pi:
+        return np.zeros(0, dtype=int)
+    off = d[big] - 2.0 * np.pi * np.round(d[big] / (2.0 * np.pi))
+    return big if np.all(np.abs(off) < 0.2 * np.pi) else np.zeros(0, dtype=int)
 
 
 def other_kind_of_machine(param_units, rec_units) -> bool:

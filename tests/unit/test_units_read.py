@@ -82,3 +82,39 @@ def test_a_torque_unit_spelt_another_way_is_the_same_unit():
     d = default_params().to_dict()
     d["units"] = {"position": "rad", "force": "N m", "time": "s"}
     assert FrictionParams.from_dict(d).units.force == "N*m"
+
+
+def _turning_axis(n=6000, dt=1e-3):
+    """A rotary axis running three and a half turns forward at 2π rad/s with a 0.3 rad wobble,
+    then back: its continuous angle (rad), and the torque it logs."""
+    t = np.arange(n) * dt
+    angle = 0.4 + 2 * np.pi * 3.5 * np.sin(np.pi * t / t[-1]) + 0.3 * np.sin(40 * t)
+    return t, angle, 0.2 * np.cos(3 * t)
+
+
+@pytest.mark.parametrize("unit,turn", [("deg", 360.0), ("rad", 2 * np.pi)])
+def test_an_angle_logged_modulo_one_turn_is_read_as_the_continuous_angle(tmp_path, unit, turn):
+    t, angle, torque = _turning_axis()
+    scale = turn / (2 * np.pi)
+    logged = np.mod(angle * scale, turn)  # a single-turn encoder's reading, [0, 1 turn)
+    p = tmp_path / "spindle.csv"
+    p.write_text(_csv(["time [s]", f"angle [{unit}]", "torque [N*m]"], [t, logged, torque]))
+    rec = load_recording(p)
+    # the continuous angle, up to a whole number of turns where it starts
+    shift = rec.position[0] - angle[0]
+    assert abs(shift / (2 * np.pi) - round(shift / (2 * np.pi))) < 1e-9
+    assert np.max(np.abs(rec.position - shift - angle)) < 1e-9
+    wraps = int(np.sum(np.abs(np.diff(logged)) > turn / 2))
+    assert wraps >= 6 and any(f"wraps at one turn ({wraps} time(s)" in note for note in rec.notes), rec.notes
+
+
+def test_a_jump_that_is_no_whole_turn_or_a_length_is_left_as_logged(tmp_path):
+    t, angle, torque = _turning_axis()
+    jumped = angle.copy()
+    jumped[3000:] += 4.0  # a jump of 4 rad between two samples: no wrap, left for the user to see
+    for header, pos in ((["time [s]", "angle [rad]", "torque [N*m]"], jumped),
+                        (["time [s]", "position [m]", "force [N]"], np.mod(angle, 2 * np.pi))):
+        p = tmp_path / "axis.csv"
+        p.write_text(_csv(header, [t, pos, torque]))
+        rec = load_recording(p)
+        assert np.array_equal(rec.position, pos) and not any("wraps" in note for note in rec.notes)
