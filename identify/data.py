@@ -126,6 +126,16 @@ _SCALED = re.compile(r"^(\d*\.?\d+(?:e[-+]?\d+)?)\s*(?:[*·]\s*)?(\D.*)$")
 COUNTS = ("count", "counts", "cts", "ct", "inc", "incs", "increments", "pulses", "ticks", "lsb", "steps")
 
 
+CURRENTS = ("a", "ma", "amp", "amps", "ampere", "amperes")  # a motor current, which is no force until scaled
+
+
+def _current_fix(name: str) -> str:
+    """What to write for a column ``name`` logged as a motor current: the torque (or force)
+    constant as its unit."""
+    return (f"a motor current is no force: the torque is the motor's torque constant times it; write that constant "
+            f"as its unit, e.g. '{name} [0.12 N*m]' for 0.12 N·m/A (a linear motor: '{name} [35 N]' for 35 N/A)")
+
+
 def _counts_fix(name: str) -> str:
     """What to write for a column ``name`` logged in counts: the size of one step as its unit."""
     return f"write the size of one step as its unit, e.g. '{name} [50 nm]' or '{name} [0.001 deg]'"
@@ -201,6 +211,11 @@ class Recording:
         could = [f"{', '.join(self.ambiguous[s])} could each be {s}" for s in signals if s in self.ambiguous]
         if could:
             return "; ".join(could)
+        currents = [(c, key) for c in self.ignored for key, unit in [_split_header(c)]
+                    if (unit or "").strip().lower() in CURRENTS]
+        if currents and {"force", "friction"} & set(signals):
+            col, key = currents[0]
+            return f"column {col!r} is in amperes: {_current_fix(key)}"
         return f"none of {_listing(self.ignored)} was recognised as one" if self.ignored else ""
 
     def __len__(self) -> int:
@@ -444,6 +459,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 if unit.strip().lower() in COUNTS:
                     raise DataError(f"{path}: column {col!r}: unit {unit!r} counts steps without saying their size: "
                                     f"{_counts_fix(headers[col][0])}")
+                if unit.strip().lower() in CURRENTS and sig in ("force", "friction"):
+                    raise DataError(f"{path}: column {col!r}: unit {unit!r}: {_current_fix(headers[col][0])}")
                 raise DataError(f"{path}: column {col!r}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
             factor, si = unit_of(unit, sig)
             if si not in SI_OF[sig]:

@@ -5,6 +5,8 @@ import numpy as np
 import pytest
 
 from leuven_friction.identify.data import DataError, load_recording
+from leuven_friction.identify.errors import IdentificationError
+from leuven_friction.identify.segment import check_force_or_friction
 from leuven_friction.model import FrictionParams, ParameterError, default_params
 
 INCH, LBF = 0.0254, 0.45359237 * 9.80665  # exact by definition (m, N)
@@ -118,3 +120,20 @@ def test_a_jump_that_is_no_whole_turn_or_a_length_is_left_as_logged(tmp_path):
         p.write_text(_csv(header, [t, pos, torque]))
         rec = load_recording(p)
         assert np.array_equal(rec.position, pos) and not any("wraps" in note for note in rec.notes)
+
+
+def test_a_motor_current_is_refused_saying_to_write_the_torque_constant_as_its_unit(tmp_path):
+    t, x, f = _signals()
+    p = tmp_path / "joint.csv"
+    p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [A]"], [t, x, f]))
+    with pytest.raises(IdentificationError) as unnamed:  # the fit's check that a force is there
+        check_force_or_friction(load_recording(p))
+    with pytest.raises(DataError) as named:
+        load_recording(p, columns={"force": "motor_current [A]"})
+    for said in (str(unnamed.value), str(named.value)):
+        assert "\n" not in said and "'motor_current [A]'" in said and "torque constant" in said, said
+        assert "motor_current [0.12 N*m]" in said, said
+    # the constant written as its unit: the torque is the constant times the current
+    p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [0.12 N*m]"], [t, x, f]))
+    rec = load_recording(p, columns={"force": "motor_current [0.12 N*m]"})
+    assert rec.units["force"] == "N*m" and np.allclose(rec.force, 0.12 * f)
