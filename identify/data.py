@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import io
 import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -294,6 +295,35 @@ def parse_column_mapping(spec: str | None) -> dict:
     return out
 
 
+def clock_seconds(raw: pd.Series) -> np.ndarray | None:
+    """A time column written as clock readings — dates and times ('2026-11-29 10:15:03.125',
+    ISO 8601) or times of day ('10:15:03.125') — as seconds from its first row, NaN in a cell
+    that is no clock reading; None where most cells are none (the column is numbers or words).
+    A time of day that falls back by over twelve hours has passed midnight."""
+    if pd.api.types.is_numeric_dtype(raw.dtype):
+        return None
+    text = raw.astype(str).str.strip()
+    if text.str.contains(":").mean() < 0.5:
+        return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            if text.str.contains(r"\d[-/.]\d+[-/.]\d", regex=True).mean() >= 0.5:
+                stamps = pd.to_datetime(text, format="mixed", errors="coerce")
+                sec = (stamps - stamps.min()).dt.total_seconds().to_numpy(dtype=np.float64)
+            else:
+                sec = pd.to_timedelta(text, errors="coerce").dt.total_seconds().to_numpy(dtype=np.float64)
+        except (ValueError, TypeError, OverflowError):
+            return None
+    ok = np.isfinite(sec)
+    if ok.mean() < 0.5:
+        return None
+    # past midnight: a time of day falling back by over twelve hours between readings
+    day = np.zeros(len(sec))
+    day[ok] = 86400.0 * np.concatenate([[0], np.cumsum(np.diff(sec[ok]) < -43200.0)])
+    return sec + day - sec[ok][0]
+
+
 def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
     """A column's values as floats, NaN where a cell is no number. In a table with the decimal
     comma, a column that holds a word somewhere is read as text with its numbers' commas in
@@ -443,11 +473,16 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             continue
         raw = df[col]
         values = numbers_of(raw, df.attrs.get("decimal", "."))
+        clock = clock_seconds(raw) if sig == "time" and not np.all(np.isfinite(values)) else None
+        if clock is not None:
+            values = clock
+            notes.append(f"{col}: clock readings, taken as seconds from the first row ({raw.iloc[0]})")
         bad = np.flatnonzero(~np.isfinite(values))
         if len(bad):
             r = int(bad[0])
             cell = raw.iloc[r]
             what = ("is empty or NaN" if cell is None or (isinstance(cell, float) and np.isnan(cell)) or not str(cell).strip()
+                    else f"{str(cell)!r} is not a clock reading" if clock is not None
                     else f"{str(cell)!r} is not a finite number")
             raise DataError(
                 f"{path}: column {col!r} row {row_of(r)}: {what}"

@@ -137,3 +137,28 @@ def test_a_motor_current_is_refused_saying_to_write_the_torque_constant_as_its_u
     p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [0.12 N*m]"], [t, x, f]))
     rec = load_recording(p, columns={"force": "motor_current [0.12 N*m]"})
     assert rec.units["force"] == "N*m" and np.allclose(rec.force, 0.12 * f)
+
+
+@pytest.mark.parametrize("start,fmt", [("2026-11-29 23:59:59.5", "%Y-%m-%d %H:%M:%S.%f"),
+                                       ("2026-11-29T23:59:59.5", "%Y-%m-%dT%H:%M:%S.%f"),
+                                       ("2026-11-29 23:59:59.5", "%H:%M:%S.%f")])
+def test_a_time_column_of_clock_readings_is_read_as_seconds_from_its_first_row(tmp_path, start, fmt):
+    # a logger that writes its clock, across midnight: 200 rows at 2 ms from 23:59:59.5
+    t, x, f = _signals(400)
+    import pandas as pd
+
+    stamps = (pd.Timestamp(start) + pd.to_timedelta(t, unit="s")).strftime(fmt)
+    p = tmp_path / "clock.csv"
+    p.write_text("timestamp,position [mm],force [N]\n" + "".join(f"{s},{float(a)!r},{float(b)!r}\n" for s, a, b in zip(stamps, x, f)))
+    rec = load_recording(p)
+    assert np.max(np.abs(rec.time - t)) < 1e-6
+    assert any("clock readings" in note for note in rec.notes), rec.notes
+
+
+def test_a_time_column_with_a_word_in_it_is_still_refused_naming_the_row(tmp_path):
+    p = tmp_path / "clock.csv"
+    p.write_text("time,position [mm],force [N]\n10:00:00.000,0,1\n10:00:00.002,0,1\nstop,0,1\n" +
+                 "".join(f"10:00:00.{k:03d},0,1\n" for k in range(4, 40, 2)))
+    with pytest.raises(DataError) as e:
+        load_recording(p)
+    assert "row 4" in str(e.value) and "'stop'" in str(e.value), str(e.value)
