@@ -295,6 +295,32 @@ def parse_column_mapping(spec: str | None) -> dict:
     return out
 
 
+def units_row(df: pd.DataFrame) -> dict | None:
+    """{column: unit} where a table's first row under its header holds units rather than
+    numbers (a DAQ export: names, then units, then data): none of its cells a number, each
+    empty or a unit of some signal (or counts, or amperes, refused later with their fix), and
+    at least one a unit. None otherwise."""
+    if len(df) < 2:
+        return None
+    out = {}
+    for col, cell in df.iloc[0].items():
+        text = "" if cell is None or (isinstance(cell, float) and np.isnan(cell)) else str(cell).strip()
+        text = text.strip("[]() ")
+        if not text:
+            continue
+        try:
+            float(text.replace(",", "."))
+            return None
+        except ValueError:
+            pass
+        low = text.lower()
+        if low in COUNTS or low in CURRENTS or any(unit_of(text, sig) is not None for sig in SI_OF):
+            out[str(col)] = text
+        else:
+            return None
+    return out or None
+
+
 def clock_seconds(raw: pd.Series) -> np.ndarray | None:
     """A time column written as clock readings — dates and times ('2026-11-29 10:15:03.125',
     ISO 8601) or times of day ('10:15:03.125') — as seconds from its first row, NaN in a cell
@@ -386,12 +412,20 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     else:
         df = _read_table(path, text)
     encoding = df.attrs.get("encoding", encoding)
+    row_units = units_row(df)
+    if row_units is not None:
+        # (a DAQ's export with its units in the row under the names: read there, then skipped)
+        attrs = dict(df.attrs)
+        df = df.iloc[1:].reset_index(drop=True)
+        df.attrs.update(attrs)
+    skipped = 1 if row_units is not None else 0
 
     def row_of(index: int) -> int:
         """The row a message names: the file's line (comments and blank lines counted, as an
         editor or a spreadsheet numbers them), or in a Parquet or .mat table the header's row + 1."""
         from .io import file_line_of_row, line_of_row, table_format
 
+        index += skipped
         line = None
         if text is not None:
             line = line_of_row(text.splitlines(), index)
@@ -405,6 +439,10 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
 
     mapping = dict(columns or {})
     headers = {str(c): _split_header(c) for c in df.columns}
+    if row_units:
+        for c, unit in row_units.items():
+            if headers[str(c)][1] is None:
+                headers[str(c)] = (headers[str(c)][0], unit)
     for sig, col in list(mapping.items()):
         if col not in headers:
             # a name given without the header's unit ("Zeit" for "Zeit [ms]") names that column
@@ -436,6 +474,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                     headers[col] = (key, tail if tail.lower() == unit_word else unit_word)
                 break
     notes = []
+    if row_units:
+        notes.append(f"units read from the row under the header ({', '.join(f'{c}: {u}' for c, u in row_units.items())})")
     ambiguous = {}
     for sig, cols in by_words.items():
         if len(cols) == 1:

@@ -162,3 +162,22 @@ def test_a_time_column_with_a_word_in_it_is_still_refused_naming_the_row(tmp_pat
     with pytest.raises(DataError) as e:
         load_recording(p)
     assert "row 4" in str(e.value) and "'stop'" in str(e.value), str(e.value)
+
+
+def test_units_in_the_row_under_the_header_are_read_and_rows_named_as_in_the_file(tmp_path):
+    # a DAQ export: names, then units, then data
+    t, x, f = _signals()
+    body = "".join(f"{float(a)!r},{float(b)!r},{float(c)!r}\n" for a, b, c in zip(t * 1e3, x * 1e3, f))
+    p = tmp_path / "daq.csv"
+    p.write_text("time,position,force\nms,mm,kN\n" + body)
+    rec = load_recording(p)
+    assert np.allclose(rec.time, t) and np.allclose(rec.position, x) and np.allclose(rec.force, 1e3 * f)
+    assert rec.units == {"time": "s", "position": "m", "force": "N"}
+    assert any("units read from the row under the header" in note for note in rec.notes), rec.notes
+    # a bad cell is named by the file's line: header 1, units 2, the first data row 3
+    lines = ("time,position,force\nms,mm,kN\n" + body).splitlines()
+    lines[9] = lines[9].split(",")[0] + ",oops," + lines[9].split(",")[2]
+    p.write_text("\n".join(lines) + "\n")
+    with pytest.raises(DataError) as e:
+        load_recording(p)
+    assert "row 10" in str(e.value) and "'oops'" in str(e.value), str(e.value)
