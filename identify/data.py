@@ -412,20 +412,25 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     else:
         df = _read_table(path, text)
     encoding = df.attrs.get("encoding", encoding)
+    # rows that are no samples: a DAQ's export with its units in the row under the names (read
+    # there), and rows with every cell empty (a spreadsheet's trailing ",,,"); the others keep
+    # the file's numbering in messages
     row_units = units_row(df)
+    rows = np.flatnonzero(~df.isna().all(axis=1).to_numpy())
+    blank = len(df) - len(rows)
     if row_units is not None:
-        # (a DAQ's export with its units in the row under the names: read there, then skipped)
+        rows = rows[rows > 0]
+    if len(rows) < len(df):
         attrs = dict(df.attrs)
-        df = df.iloc[1:].reset_index(drop=True)
+        df = df.iloc[rows].reset_index(drop=True)
         df.attrs.update(attrs)
-    skipped = 1 if row_units is not None else 0
 
     def row_of(index: int) -> int:
         """The row a message names: the file's line (comments and blank lines counted, as an
         editor or a spreadsheet numbers them), or in a Parquet or .mat table the header's row + 1."""
         from .io import file_line_of_row, line_of_row, table_format
 
-        index += skipped
+        index = int(rows[index])
         line = None
         if text is not None:
             line = line_of_row(text.splitlines(), index)
@@ -474,6 +479,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                     headers[col] = (key, tail if tail.lower() == unit_word else unit_word)
                 break
     notes = []
+    if blank:
+        notes.append(f"{blank} row(s) with every cell empty: skipped")
     if row_units:
         notes.append(f"units read from the row under the header ({', '.join(f'{c}: {u}' for c, u in row_units.items())})")
     ambiguous = {}

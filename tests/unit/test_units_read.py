@@ -181,3 +181,19 @@ def test_units_in_the_row_under_the_header_are_read_and_rows_named_as_in_the_fil
     with pytest.raises(DataError) as e:
         load_recording(p)
     assert "row 10" in str(e.value) and "'oops'" in str(e.value), str(e.value)
+
+
+def test_rows_with_every_cell_empty_are_skipped_and_later_rows_keep_their_lines(tmp_path):
+    t, x, f = _signals()
+    lines = _csv(["time [s]", "position [m]", "force [N]"], [t, x, f]).splitlines()
+    lines.insert(50, ",,")  # a spreadsheet's empty row mid-file, and two at its end
+    p = tmp_path / "sheet.csv"
+    p.write_text("\n".join(lines + [",,", ",,"]) + "\n")
+    rec = load_recording(p)
+    assert np.array_equal(rec.time, t) and any("3 row(s) with every cell empty" in n for n in rec.notes), rec.notes
+    # one empty cell is still refused, named by its line in the file (the empty row counted)
+    lines[120] = "," + lines[120].split(",", 1)[1]
+    p.write_text("\n".join(lines) + "\n")
+    with pytest.raises(DataError) as e:
+        load_recording(p)
+    assert "column 'time [s]' row 121" in str(e.value), str(e.value)
