@@ -74,9 +74,23 @@ def sniff(lines: Iterable[str]) -> tuple[str, str]:
     return sep, decimal
 
 
+WORKBOOKS = ((b"PK\x03\x04", "a zip archive (an Excel .xlsx or OpenDocument .ods workbook is one)"),
+             (b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1", "an Excel 97–2003 .xls workbook"))
+
+
+def refuse_workbook(head: bytes, label) -> None:
+    """A spreadsheet workbook given as a recording is refused saying what to do, before its
+    bytes are read as text (they decode to a column named 'PK…')."""
+    for magic, what in WORKBOOKS:
+        if head.startswith(magic):
+            raise DataError(f"{label}: {what}, not a text table: save the sheet as CSV (UTF-8) from the "
+                            f"spreadsheet program and give that file")
+
+
 def decode_text(raw: bytes, label) -> tuple[str, str]:
     """(text, encoding) of a table's bytes: UTF-8 (with or without a byte-order mark), else
     Windows-1252, which many lab programs on Windows still write (µ, °, ä as one byte each)."""
+    refuse_workbook(raw[:16], label)
     try:
         return raw.decode("utf-8-sig"), "utf-8-sig"
     except UnicodeDecodeError:
@@ -96,6 +110,7 @@ def _head_text(path: Path) -> tuple[str, str]:
             head = fh.read(SNIFF_BYTES)
     except OSError as e:
         raise DataError(f"{path}: cannot read ({e.strerror})") from None
+    refuse_workbook(head, path)
     if b"\0" in head:
         raise DataError(f"{path}: not a text file (it contains NUL bytes)")
     try:

@@ -106,6 +106,15 @@ def test_unreadable_files_are_data_errors(tmp_path):
     (tmp_path / "bin.csv").write_bytes(b"\x00\x01\x02" * 50)
     with pytest.raises(DataError, match="bin.csv: not a text file"):
         load_recording(tmp_path / "bin.csv")
+    # a spreadsheet workbook, by file and as an upload's bytes: said what it is and what to do
+    # (before, a workbook's bytes were read as a table with one column named 'PK…')
+    import zipfile
+
+    with zipfile.ZipFile(tmp_path / "session.xlsx", "w") as z:
+        z.writestr("xl/workbook.xml", "<workbook/>")
+    for source, kw in ((tmp_path / "session.xlsx", {}), ((tmp_path / "session.xlsx").read_bytes(), {"name": "up.xlsx"})):
+        with pytest.raises(DataError, match=r"xlsx: a zip archive \(an Excel .xlsx.*save the sheet as CSV"):
+            load_recording(source, **kw)
 
 
 @pytest.mark.parametrize("fmt", ["csv", "parquet"])
