@@ -2865,9 +2865,9 @@ def ripple_on_one_way_travel(params: dict, span: float, order: SpeedOrder) -> st
     """Why a ripple is not told from a trend along the session (``Term.unsettled``'s kind of
     reason), or None: on a travel covered one way (``travel_order``, |ρ| ≥ SPEED_ORDER_RHO)
     the position is a clock, and a ripple of under RIPPLE_ONE_WAY_PERIODS periods over it is a
-    slow change in time, or in sliding distance (a run-in, wear), as well. A pin-on-disc made
-    apart, its friction running in over 3 m of sliding, had a ripple of 130 rad (2.6 periods of
-    its 341 rad) named, and the drift it was seen but not named."""
+    slow change in time, or in sliding distance (a run-in, wear), as well: a pin-on-disc made
+    apart, its friction running in over 3 m of sliding, had that run-in named a ripple of 130 rad
+    (2.6 periods of its 341 rad)."""
     if not (order.rho >= SPEED_ORDER_RHO):  # (NaN: too few samples to tell)
         return None
     lam = float(params["wavelength"])
