@@ -18,9 +18,13 @@ ALIASES = {  # header names, lower case, units stripped; the German ones as lab 
     "temperature": ("temperature", "temp", "t_oil", "celsius", "temperatur"),
 }
 
-UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm, in, mil, ft; rad, mrad, urad, deg; N, mN, uN, kN, lbf (lb), ozf; "
+# a tribometer's friction coefficient, taken (times the normal load) where no friction or force column is
+COF_NAMES = frozenset(("cof", "mu", "µ", "μ", "coefficient_of_friction", "friction_coefficient", "coeff_of_friction",
+                       "reibwert", "reibungszahl", "reibungskoeffizient"))
+
+UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm, in, mil, ft; rad, mrad, urad, deg, rev; N, mN, uN, kN, lbf (lb), ozf; "
                   "their products for a torque (N·m, N*m, N.m, N-m, mN·m, N·mm, Nmm, mNm, lbf·in, in-lb, lbf·ft) and "
-                  "quotients for a speed (mm/s, in/s, deg/s, rad/s); °C, K; any of them with a size in front "
+                  "quotients for a speed (mm/s, in/s, deg/s, rad/s, rev/min; rpm); °C, K; any of them with a size in front "
                   "(50 nm, 0.001 deg: one step of an encoder logged in counts)")
 
 
@@ -38,5 +42,8 @@ def columns_help() -> str:
         + [para(f"{sig}: {', '.join(ALIASES[sig])}", "  ") for sig in ALIASES]
         + [para("a name that reads as a reference, command, model or estimate (q_ref, pos_cmd, friction_model) "
                 "is not taken."),
+           para("without a friction or force column, a friction coefficient (" + ", ".join(sorted(COF_NAMES)) + ") "
+                "is read as the friction divided by the normal load, which must then have a column; without a "
+                "position column, the velocity is integrated into one."),
            para("units: in brackets after the name ('pos [mm]', 'time [ms]') or as its last word (x_mm); a "
                 "header without one is read as SI. Known: " + UNITS_ACCEPTED + ".")])

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .columns import ALIASES, UNITS_ACCEPTED
+from .columns import ALIASES, COF_NAMES, UNITS_ACCEPTED
 from .errors import DataError
 
 SIGNALS = ("time", "position", "force", "velocity", "friction", "normal_load", "temperature")
@@ -31,6 +31,9 @@ UNITS = {
     "m": (1.0, "m"), "mm": (1e-3, "m"), "um": (1e-6, "m"), "µm": (1e-6, "m"), "micron": (1e-6, "m"), "nm": (1e-9, "m"),
     "rad": (1.0, "rad"), "mrad": (1e-3, "rad"), "urad": (1e-6, "rad"), "µrad": (1e-6, "rad"),
     "deg": (np.pi / 180, "rad"), "°": (np.pi / 180, "rad"),
+    # a turn of a spindle or a disc; its speed in turns a minute (rev/min, 1/min: a quotient)
+    "rev": (2 * np.pi, "rad"), "revs": (2 * np.pi, "rad"), "turn": (2 * np.pi, "rad"), "turns": (2 * np.pi, "rad"),
+    "rpm": (2 * np.pi / 60, "rad/s"), "u/min": (2 * np.pi / 60, "rad/s"), "1/min": (2 * np.pi / 60, "rad/s"),
     "n": (1.0, "N"), "mn": (1e-3, "N"), "un": (1e-6, "N"), "µn": (1e-6, "N"), "kn": (1e3, "N"),
     "nm_torque": (1.0, "N*m"), "n*m": (1.0, "N*m"), "n.m": (1.0, "N*m"), "n m": (1.0, "N*m"), "mnm": (1e-3, "N*m"),
     "m/s": (1.0, "m/s"), "mm/s": (1e-3, "m/s"), "um/s": (1e-6, "m/s"), "rad/s": (1.0, "rad/s"),
@@ -406,7 +409,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
 
         # only the columns a signal can come from: the other columns of a wide file cost nothing
         explicit = set((columns or {}).values())
-        keys = _KNOWN_NAMES | {_split_header(c)[0] for c in explicit}  # "Zeit" reads "Zeit [ms]" too
+        keys = _KNOWN_NAMES | COF_NAMES | {_split_header(c)[0] for c in explicit}  # "Zeit" reads "Zeit [ms]" too
         df = read_table_file(path, usecols=lambda c: (str(c) in explicit or _split_header(c)[0] in keys
                                                       or bool(recognise(*_split_header(c)))))
     else:
@@ -491,7 +494,15 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         else:
             ambiguous[sig] = cols
             notes.append(f"{', '.join(cols)} could each be {sig}: none taken (name one with --columns {sig}=<column>)")
-    missing = [s for s in require if s not in mapping]
+    # a tribometer that logs its friction coefficient and no force: the friction is μ·N (below)
+    cof = None
+    if not {"friction", "force"} & (set(mapping) | refused):
+        cof = next((c for c, (key, _) in headers.items() if c not in mapping.values() and key in COF_NAMES), None)
+        if cof is not None:
+            mapping["friction"] = cof
+    # a tribometer or a spindle that logs its speed and not its position: the position is the
+    # speed integrated (below)
+    missing = [s for s in require if s not in mapping and not (s == "position" and "velocity" in mapping)]
     if missing:
         could = "".join(f"; {', '.join(ambiguous[m])} could each be {m}" for m in missing if m in ambiguous)
         # a column whose name says a missing signal, passed over for a unit in counts (no unit of
@@ -536,6 +547,14 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 + (f" ({len(bad)} such rows)" if len(bad) > 1 else "")
             )
         unit = (units or {}).get(sig) or headers[col][1]
+        if col == cof:
+            # a friction coefficient: dimensionless (a header may say "-" or "1"), N times it is the friction
+            if unit is not None and unit.strip() not in ("-", "1", "—", ""):
+                raise DataError(f"{path}: column {col!r} reads as a friction coefficient, which has no unit, but its "
+                                f"header says {unit!r}: name the friction with --columns friction=<column>")
+            setattr(rec, sig, values)
+            rec.columns[sig] = col
+            continue
         if unit is not None and sig != "temperature":
             if unit_of(unit, sig) is None:
                 if unit.strip().lower() in COUNTS:
@@ -568,6 +587,14 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             # all, a transition curve to 10⁻⁴ N, and its refinement running off)
             notes.append(f"{mapping[sig]}: taken as {sig} as asked, though its name reads as {said}, not a "
                          f"measurement; friction is read from what the machine did")
+    if cof is not None:
+        if rec.normal_load is None:
+            raise DataError(f"{path}: column {cof!r} is a friction coefficient, and the friction μ·N needs the normal "
+                            f"load: add its column (e.g. 'Fn [N]'), or name the friction with --columns friction=<column>")
+        rec.friction = rec.friction * rec.normal_load
+        rec.units["friction"] = "N"
+        notes.append(f"{cof}: a friction coefficient; the friction is it times the normal load "
+                     f"{rec.columns['normal_load']} (N)")
     ignored = [c for c in in_file if c not in mapping.values()]
     rec.ignored = ignored
     rec.ambiguous = ambiguous
@@ -592,6 +619,13 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                "the rows if they are out of order")
         raise DataError(f"{path}: column {rec.columns['time']!r} row {row_of(r)}: time {raw.iloc[r]} does not "
                         f"increase (previous {raw.iloc[r - 1]}): {why}")
+    if rec.position is None and rec.velocity is not None and "position" not in refused:
+        rec.position = integrated_speed(rec.time, rec.velocity)
+        rec.units["position"] = {"m/s": "m", "rad/s": "rad"}.get(rec.units.get("velocity"), "m")
+        rec.columns["position"] = rec.columns["velocity"]
+        notes.append(f"no position column: the position is {rec.columns['velocity']} integrated over time (its noise "
+                     f"and any offset integrate into a drift of the position, so presliding is not resolved; name a "
+                     f"position column with --columns position=<column> if the file has one)")
     if rec.position is not None and rec.units.get("position") == "rad":
         wraps = turn_wraps(rec.position)
         if len(wraps):
@@ -599,6 +633,11 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             notes.append(f"{rec.columns['position']}: the angle wraps at one turn ({len(wraps)} time(s), first at row "
                          f"{row_of(int(wraps[0]) + 1)}): unwrapped to a continuous angle")
     return rec
+
+
+def integrated_speed(t: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """The position a logged speed gives, by the trapezoidal rule from 0 at the first sample."""
+    return np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
 
 
 def turn_wraps(angle: np.ndarray) -> np.ndarray:

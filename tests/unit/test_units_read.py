@@ -197,3 +197,48 @@ def test_rows_with_every_cell_empty_are_skipped_and_later_rows_keep_their_lines(
     with pytest.raises(DataError) as e:
         load_recording(p)
     assert "column 'time [s]' row 121" in str(e.value), str(e.value)
+
+
+def _tribometer_log(n=500, dt=0.01):
+    """A disc's speed in rpm ramping 0 → 60 → 20, its friction coefficient, its normal load."""
+    t = np.arange(n) * dt
+    rpm = np.interp(t, [0.0, 1.0, 3.0, t[-1]], [0.0, 60.0, 20.0, 20.0])
+    mu = 0.4 + 0.1 * np.exp(-t)
+    fn = 10.0 + 2.0 * np.sin(t)
+    return t, rpm, mu, fn
+
+
+def test_a_tribometer_log_of_speed_in_rpm_and_friction_coefficient_reads_as_position_and_friction(tmp_path):
+    t, rpm, mu, fn = _tribometer_log()
+    p = tmp_path / "pod.csv"
+    p.write_text(_csv(["Time [s]", "Speed [rpm]", "COF", "Fn [N]"], [t, rpm, mu, fn]))
+    rec = load_recording(p, require=("time", "position"))
+    omega = rpm * 2 * np.pi / 60
+    assert rec.units["velocity"] == "rad/s" and np.allclose(rec.velocity, omega)
+    # the position: the speed integrated (trapezoids, exact on this piecewise-linear speed)
+    exact = np.concatenate([[0.0], np.cumsum(0.5 * (omega[1:] + omega[:-1]) * np.diff(t))])
+    assert rec.units["position"] == "rad" and np.allclose(rec.position, exact)
+    assert abs(rec.position[-1] - 2 * np.pi / 60 * (0.5 * 60 + 2 * 40 + 0.99 * 20 + 20 * (t[-1] - 3.0 - 0.99))) < 1e-9
+    # the friction: μ times the normal load, in N
+    assert rec.units["friction"] == "N" and np.allclose(rec.friction, mu * fn)
+    said = " ".join(rec.notes)
+    assert "integrated over time" in said and "friction coefficient" in said, said
+
+
+def test_a_friction_coefficient_without_a_normal_load_is_refused_saying_what_it_needs(tmp_path):
+    t, rpm, mu, _ = _tribometer_log()
+    p = tmp_path / "pod.csv"
+    p.write_text(_csv(["Time [s]", "Speed [rev/min]", "mu"], [t, rpm, mu]))
+    with pytest.raises(DataError) as e:
+        load_recording(p, require=("time", "position"))
+    said = str(e.value)
+    assert "\n" not in said and "'mu' is a friction coefficient" in said and "normal load" in said, said
+
+
+def test_turns_and_rpm_are_units_of_angle_and_angular_speed():
+    from leuven_friction.identify.data import unit_of
+
+    assert unit_of("rev", "position") == pytest.approx((2 * np.pi, "rad"))
+    for u in ("rpm", "RPM", "rev/min", "1/min"):
+        f, si = unit_of(u, "velocity")
+        assert si == "rad/s" and f == pytest.approx(2 * np.pi / 60), u
