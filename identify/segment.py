@@ -65,11 +65,16 @@ def detect_noise(x) -> object:
             q = float(np.min(du))
         # on a grid when the steps between readings are whole multiples of the smallest step
         # (tested on the steps, not the readings: a file's rounding of large readings must
-        # not hide the grid); the step is then the mean single step
+        # not hide the grid); the step is the mean single step, and the test is on steps of up
+        # to GRID_TEST_STEPS of it: the smallest step carries the file's rounding, which a
+        # fast motion's hundreds of steps multiply (a 26-bit encoder written in degrees to 9
+        # decimals: 5.364·10⁻⁶ deg read 8·10⁻⁵ short, 746 steps a sample off the grid by 0.06,
+        # and the position taken for one without noise)
+        single = d[np.round(d / q) == 1]
+        q = float(np.mean(single)) if len(single) else q
         k = d / q
-        if q > 0 and np.quantile(np.abs(k - np.round(k)), 0.99) < 0.02:
-            single = d[np.round(k) == 1]
-            q = float(np.mean(single)) if len(single) else q
+        small = k <= GRID_TEST_STEPS
+        if q > 0 and small.any() and np.quantile(np.abs(k - np.round(k))[small], 0.99) < 0.02:
             # a grid finer than the noise on it is the digits the file was written with, not
             # an encoder (a capacitive sensor's 20 nm written to 10⁻¹⁰ m was read as a
             # 10⁻¹⁰ m encoder, its noise as 2.9·10⁻¹¹): the noise is then the sensor's
@@ -79,6 +84,7 @@ def detect_noise(x) -> object:
 
 
 GRID_UNDER_NOISE = 2.0  # a grid whose step is under half the white noise on it is no encoder's
+GRID_TEST_STEPS = 50  # steps of up to this many grid steps tell whether readings lie on a grid
 
 
 def noise_sd(noise) -> float:

@@ -472,6 +472,23 @@ def test_a_grid_finer_than_the_noise_is_the_files_digits_not_an_encoder(tmp_path
             assert isinstance(noise, Quantized) and noise.step == pytest.approx(1e-7, rel=1e-6), noise
 
 
+def test_an_encoder_written_in_degrees_to_nine_decimals_is_an_encoder(tmp_path):
+    # a 26-bit encoder (5.364·10⁻⁶ deg a count) logged in degrees to 9 decimals, slewing at up
+    # to 2 deg/s at 500 Hz (750 counts a sample): the smallest step carries the file's rounding
+    # (8·10⁻⁵ of it), which the fast steps multiplied off the grid, and the position was read as
+    # one without noise (x_noise 10⁻¹¹ rad). The grid is told on steps of up to 50 counts
+    from leuven_friction.identify.segment import Quantized, detect_noise
+
+    count = 360.0 / 2**26
+    t = np.arange(60000) * 2e-3
+    deg = 120.0 + np.cumsum(np.where(t < 60.0, 0.004 * np.sin(t) ** 2, 1e-5 * np.sin(0.5 * t)))
+    p = tmp_path / "az.csv"
+    p.write_text("t [ms],az_angle [deg],torque [N*m]\n"
+                 + "".join(f"{a * 1e3:.1f},{b:.9f},1.0\n" for a, b in zip(t, np.floor(deg / count) * count)))
+    noise = detect_noise(load_recording(p).position)
+    assert isinstance(noise, Quantized) and noise.step == pytest.approx(count * np.pi / 180, rel=1e-4), noise
+
+
 @pytest.mark.parametrize("times, says", [
     ([0.0, 0.1, 0.2, 0.3, 0.0, 0.1, 0.2] + [0.3 + 0.1 * i for i in range(1, 10)],
      r"row 6: time 0.0 does not increase \(previous 0.3\): the clock goes back: two logs in one file\? split it there"),
