@@ -587,7 +587,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             # all, a transition curve to 10⁻⁴ N, and its refinement running off)
             notes.append(f"{mapping[sig]}: taken as {sig} as asked, though its name reads as {said}, not a "
                          f"measurement; friction is read from what the machine did")
-    if cof is not None:
+    if cof is not None and rec.friction is not None:  # (a command that reads no friction leaves it)
         if rec.normal_load is None:
             raise DataError(f"{path}: column {cof!r} is a friction coefficient, and the friction μ·N needs the normal "
                             f"load: add its column (e.g. 'Fn [N]'), or name the friction with --columns friction=<column>")
