@@ -45,7 +45,7 @@ LOAD_ALPHA = 0.8
 
 
 def schedule(seed: int):
-    """Disc speed (rad/s) and normal load (N) at the simulation's rate, and the load steps."""
+    """Disc speed (rad/s) and normal load (N) at the simulation's rate."""
     rng = np.random.default_rng([seed, 5150])
     order = np.concatenate([rng.permutation(len(RPM)), rng.permutation(len(RPM))])
     loads = np.array([10.0, 20.0, 5.0, 10.0, 20.0, 5.0, 20.0, 10.0, 5.0, 10.0, 5.0, 20.0, 10.0, 20.0])
