@@ -604,6 +604,22 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         notes.append("not UTF-8: read as Windows-1252")
     rec.notes = notes
 
+    # a row that repeats the one before it in every value read (a logger that wrote a sample
+    # twice) is no second sample: dropped, and counted; a repeated time with other values is
+    # refused below
+    read = [sig for sig in SIGNALS if getattr(rec, sig) is not None and len(getattr(rec, sig)) == len(rec.time)]
+    again = np.ones(max(len(rec.time) - 1, 0), bool)
+    for sig in read:
+        a = getattr(rec, sig)
+        again &= a[1:] == a[:-1]
+    if again.any():
+        keep = np.concatenate([[True], ~again])
+        first = row_of(int(np.flatnonzero(again)[0]) + 1)
+        for sig in read:
+            setattr(rec, sig, getattr(rec, sig)[keep])
+        rows = rows[keep]
+        notes.append(f"{int(again.sum())} row(s) repeating the row before in every value (first at row {first}): "
+                     f"dropped")
     n = len(rec.time)
     if n < MIN_SAMPLES:
         raise DataError(f"{path}: only {n} sample(s); need at least {MIN_SAMPLES}")
@@ -614,7 +630,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         raw = df[rec.columns["time"]]  # the file's own numbers, in the file's unit
         # a clock that goes back is most often a second log appended (a logger restarted), not
         # rows out of order
-        why = ("a repeated row: remove repeated rows" if dt[r - 1] == 0 else
+        why = ("the same time as the row before, with other values (a row repeated in every value is "
+               "dropped): remove one of the two, or write the time with more digits" if dt[r - 1] == 0 else
                "the clock goes back: two logs in one file? split it there (fit takes several files), or sort "
                "the rows if they are out of order")
         raise DataError(f"{path}: column {rec.columns['time']!r} row {row_of(r)}: time {raw.iloc[r]} does not "

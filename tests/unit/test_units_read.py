@@ -242,3 +242,21 @@ def test_turns_and_rpm_are_units_of_angle_and_angular_speed():
     for u in ("rpm", "RPM", "rev/min", "1/min"):
         f, si = unit_of(u, "velocity")
         assert si == "rad/s" and f == pytest.approx(2 * np.pi / 60), u
+
+
+def test_a_row_written_twice_is_dropped_and_a_repeated_time_with_other_values_refused(tmp_path):
+    t, x, f = _signals()
+    lines = _csv(["time [s]", "position [m]", "force [N]"], [t, x, f]).splitlines()
+    for at in (150, 90, 30):  # a logger that wrote three samples twice
+        lines.insert(at + 1, lines[at])
+    p = tmp_path / "twice.csv"
+    p.write_text("\n".join(lines) + "\n")
+    rec = load_recording(p)
+    assert np.array_equal(rec.time, t) and np.array_equal(rec.position, x) and np.array_equal(rec.force, f)
+    assert any("3 row(s) repeating the row before in every value (first at row 32)" in n for n in rec.notes), rec.notes
+    # the same time with another reading is no repetition: refused, named by the file's line
+    time, _, force = lines[61].split(",")
+    lines.insert(62, f"{time},0.5,{force}")
+    p.write_text("\n".join(lines) + "\n")
+    with pytest.raises(DataError, match=r"row 63: time .* does not increase"):
+        load_recording(p)
