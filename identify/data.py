@@ -334,23 +334,23 @@ def clock_seconds(raw: pd.Series) -> np.ndarray | None:
     text = raw.astype(str).str.strip()
     if text.str.contains(":").mean() < 0.5:
         return None
+    dated = text.str.contains(r"\d[-/.]\d+[-/.]\d", regex=True).mean() >= 0.5
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         try:
-            if text.str.contains(r"\d[-/.]\d+[-/.]\d", regex=True).mean() >= 0.5:
-                stamps = pd.to_datetime(text, format="mixed", errors="coerce")
-                sec = (stamps - stamps.min()).dt.total_seconds().to_numpy(dtype=np.float64)
-            else:
-                sec = pd.to_timedelta(text, errors="coerce").dt.total_seconds().to_numpy(dtype=np.float64)
+            parsed = (pd.to_datetime(text, format="mixed", errors="coerce") if dated
+                      else pd.to_timedelta(text, errors="coerce"))
         except (ValueError, TypeError, OverflowError):
             return None
-    ok = np.isfinite(sec)
+    ok = parsed.notna().to_numpy()
     if ok.mean() < 0.5:
         return None
-    # past midnight: a time of day falling back by over twelve hours between readings
-    day = np.zeros(len(sec))
-    day[ok] = 86400.0 * np.concatenate([[0], np.cumsum(np.diff(sec[ok]) < -43200.0)])
-    return sec + day - sec[ok][0]
+    sec = (parsed - parsed[ok].iloc[0]).dt.total_seconds().to_numpy(dtype=np.float64, copy=True)
+    if not dated:
+        # past midnight: a time of day falling back by over twelve hours between readings (a
+        # date says the day itself, and a clock of dates going back is refused below)
+        sec[ok] += 86400.0 * np.concatenate([[0], np.cumsum(np.diff(sec[ok]) < -43200.0)])
+    return sec
 
 
 def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
@@ -607,7 +607,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     # a row that repeats the one before it in every value read (a logger that wrote a sample
     # twice) is no second sample: dropped, and counted; a repeated time with other values is
     # refused below
-    read = [sig for sig in SIGNALS if getattr(rec, sig) is not None and len(getattr(rec, sig)) == len(rec.time)]
+    read = [sig for sig in SIGNALS if getattr(rec, sig) is not None]
     again = np.ones(max(len(rec.time) - 1, 0), bool)
     for sig in read:
         a = getattr(rec, sig)
