@@ -1085,7 +1085,11 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
     if name == "position_ripple":
         span = float(np.ptp(cmp_.path))
         lo = min(ripple_min_wavelength(cmp_), span / 4)
-        return Term(name, {}, (("cs", "lin", -0.9, 0.9), ("cc", "lin", -0.9, 0.9),
+        # the phases read at the middle of the travel (``x0``): there they move little with λ,
+        # so the sine and cosine parts are nearly apart from it, and their σ is the ripple's
+        # own, not λ's times the wavelengths from position 0
+        mid = 0.5 * (float(np.min(cmp_.path)) + float(np.max(cmp_.path)))
+        return Term(name, {"x0": mid}, (("cs", "lin", -0.9, 0.9), ("cc", "lin", -0.9, 0.9),
                                ("wavelength", "log", math.log(lo / span), math.log(0.5)),
                                ("cs2", "lin", -0.5, 0.5), ("cc2", "lin", -0.5, 0.5)), refs={"wavelength": span})
     if name == "cyclic_softening":

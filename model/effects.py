@@ -143,14 +143,14 @@ class Context:
         return _kept(self._log_speed, key, 2, self.time.size,
                      lambda: np.log(np.maximum(np.abs(self.signal("velocity", effect)), key[0]) / key[1]))
 
-    def phase_along_position(self, wavelength: float, effect: str) -> tuple[np.ndarray, np.ndarray]:
-        """(sin θ, cos θ) of θ = 2π·x/λ along the context's position, kept for the last
-        PHASES_KEPT λ: a finite-difference Jacobian moves λ and comes back to it for the next
-        column."""
-        key = float(wavelength)
+    def phase_along_position(self, wavelength: float, origin: float, effect: str) -> tuple[np.ndarray, np.ndarray]:
+        """(sin θ, cos θ) of θ = 2π·(x − x0)/λ along the context's position, kept for the last
+        PHASES_KEPT (λ, x0): a finite-difference Jacobian moves λ and comes back to it for the
+        next column."""
+        key = (float(wavelength), float(origin))
 
         def make():
-            th = 2.0 * np.pi * self.signal("position", effect) / key
+            th = 2.0 * np.pi * (self.signal("position", effect) - key[1]) / key[0]
             return np.sin(th), np.cos(th)
 
         return _kept(self._phase, key, PHASES_KEPT, 2 * self.time.size, make)
@@ -285,7 +285,7 @@ def _ripple(v, ctx):
     # fundamental and second harmonic, as a tooth profile is seldom a sine
     # sin(θ + φ) = sin θ·cos φ + cos θ·sin φ, and the second harmonic's sin 2θ, cos 2θ from
     # the same sin θ, cos θ: only these two are evaluated along the position (and kept)
-    s, c = ctx.phase_along_position(v["wavelength"], "position_ripple")
+    s, c = ctx.phase_along_position(v["wavelength"], v.get("x0", 0.0), "position_ripple")
     out = 1.0 + v["a"] * (s * math.cos(v["phase"]) + c * math.sin(v["phase"]))
     if v.get("a2", 0.0):
         p2 = v.get("phase2", 0.0)
@@ -346,11 +346,16 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
            (EffectParam("a", "1", 0.0, 0.95, "relative amplitude", polar_with="phase"),
             EffectParam("wavelength", "position", 0.0, 1e12, "period along the position", lo_open=True,
                         shape_of=("a", "a2")),
-            EffectParam("phase", "rad", -1e3, 1e3, "phase at position 0", shape_of=("a",)),
+            EffectParam("phase", "rad", -1e3, 1e3, "phase at x0", shape_of=("a",)),
             EffectParam("a2", "1", 0.0, 0.5, "relative amplitude of the second harmonic", default=0.0,
                         polar_with="phase2"),
-            EffectParam("phase2", "rad", -1e3, 1e3, "phase of the second harmonic at position 0", default=0.0,
-                        shape_of=("a2",))),
+            EffectParam("phase2", "rad", -1e3, 1e3, "phase of the second harmonic at x0", default=0.0,
+                        shape_of=("a2",)),
+            # where the phases are read: a phase at a position many wavelengths from the data
+            # moves with every part in 10⁴ of λ, and its σ says nothing of how well the ripple
+            # is seen there (a telescope axis 48 wavelengths from 0 read φ ± 1.8 rad, its
+            # amplitude 5.6 σ); the diagnosis writes the middle of the travel
+            EffectParam("x0", "position", -1e12, 1e12, "position the phases are read at", default=0.0)),
            ("position",), _ripple, "move over the same positions at different times and speeds",
            {"a": 0.0, "a2": 0.0}),
     Effect("cyclic_softening", "the presliding spring softens (h < 0) or hardens (h > 0) with the number of "

@@ -61,6 +61,11 @@ def test_position_ripple_takes_its_values_at_known_phases_at_each_wavelength_ask
     # a phase shifts the profile: φ = π/2 turns the sine into a cosine
     f = EFFECTS["position_ripple"].scale({"a": a, "wavelength": 0.02, "phase": math.pi / 2, "a2": 0.0}, ctx)
     assert f == pytest.approx([1.0 + a, 1.0, 1.0 - a, 1.0, 1.0 + a * r], abs=1e-12)
+    # read at x0 = 5 mm, the phases count from there: at λ = 20 mm, x = 5 mm is the sine's
+    # zero and x = 10 mm a quarter wavelength on; a file without x0 reads them at position 0
+    f = EFFECTS["position_ripple"].scale({"a": a, "wavelength": 0.02, "phase": 0.0, "a2": 0.0, "x0": 5e-3}, ctx)
+    assert f == pytest.approx([1.0 - a, 1.0, 1.0 + a, 1.0, 1.0 - a * r], abs=1e-12)
+    assert validate_effect_entry(_entry("position_ripple", a=0.1, wavelength=0.02, phase=0.3), "e")["params"]["x0"] == 0.0
 
 
 def test_rate_stiffness_is_a_power_of_the_speed_above_its_floor_and_capped():

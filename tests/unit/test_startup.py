@@ -30,6 +30,13 @@ def test_help_and_argument_errors_load_no_heavy_module(argv, code):
     assert out["heavy"] == []
 
 
+def test_python_dash_m_runs_the_same_command_line():
+    r = subprocess.run([sys.executable, "-m", "leuven_friction", "fit", "--help"], capture_output=True, text=True)
+    assert r.returncode == 0 and r.stdout.startswith("usage: leuven-friction fit"), (r.returncode, r.stderr)
+    r = subprocess.run([sys.executable, "-m", "leuven_friction", "no-such-command"], capture_output=True, text=True)
+    assert r.returncode == 2 and "invalid choice" in r.stderr
+
+
 def test_model_package_loads_its_names_on_first_use():
     code = ("import sys; import leuven_friction.model as m; a = 'numba' in sys.modules; "
             "m.simulate_displacement; print(a, 'numba' in sys.modules)")
