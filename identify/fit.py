@@ -511,8 +511,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             datasets.append(ds)
         mb = motion_branches(pr)
         read = inertia_reads.get(id(given), (None, ""))[0]
-        # (a file's inertia is taken as exact: a value from the drawings, as ``_with_inertia`` keeps it)
-        inertia = (p.inertia, 0.0) if base is not None else (read.value, read.stderr) if read is not None and read.usable else None
+        # a file's inertia where it holds one it did not hold (a value from the drawings, or
+        # read before: ``_with_inertia`` keeps it), with its σ; else the record's own reading
+        file_reads = base is not None and "inertia" not in (base.provenance.get("held") or {})
+        inertia = ((base.inertia, base.uncertainty.get("inertia", 0.0)) if file_reads else
+                   (read.value, read.stderr) if read is not None and read.usable else None)
         if pr.friction is None and pr.force is not None and inertia is not None:
             # a controller that prescribes the motion crosses presliding at each reversal at the
             # commanded speed, faster than the force branches' creep (a feed slide made apart,
@@ -524,9 +527,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             if mb:
                 notes.append(f"{pr.source}: friction at the reversals of its motion crossed faster than {v_max:.3g} "
                              f"(the force branches' end) taken as the applied force − I·ā (eq. (8), I = "
-                             f"{inertia[0]:.4g}, " + ("the starting file's)" if base is not None else "read from the record)"))
+                             f"{inertia[0]:.4g}, " + ("the starting file's)" if file_reads else "read from the record)"))
                 f_noise[id(pr)] = ff.noise
-        elif pr.friction is None and pr.force is not None and base is None:
+        elif pr.friction is None and pr.force is not None and base is None and np.isfinite(v_max):
             wanting.append((pr, v_max))  # its inertia is read beside the curve of the branches found (below)
         if mb:
             datasets.append(_motion_dataset(pr, mb, f_noise.get(id(pr), pr.th.f_noise)))
@@ -549,6 +552,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         else:
             notes.append(f"{pr.source}: {len(fb)} force-driven and {len(mb)} motion-driven presliding branch(es)")
     _thin_all(datasets, notes)
+    # (``sliding_branches`` takes branches out of their data sets against the median branch:
+    # a second pass, with more branches, judges them afresh)
+    found = [(d, list(d.branches)) for d in datasets]
 
     def curve_from(datasets: list, notes: list):
         """The transition curve's knots and maximum-likelihood fit on ``datasets`` (knots the
@@ -635,8 +641,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         from .refine import sigma1_at_data_scale
 
         beside = p.replace(transition_curve=TransitionCurve(kind="piecewise_linear", z=tuple(map(float, tfit.z)),
-                                                            F=tuple(map(float, tfit.F))), n=float(tfit.n),
-                           sigma1=sigma1_at_data_scale(p.stribeck, levels))
+                                                            F=tuple(map(float, tfit.F))), n=float(tfit.n))
+        s1 = sigma1_at_data_scale(p.stribeck, levels)
+        beside = beside if s1 is None else beside.replace(sigma1=s1)
         added = []
         for pr, v_max in wanting:
             est = inertia_beside_model(pr.rec, beside)
@@ -647,11 +654,14 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             if mb:
                 notes.append(f"{pr.source}: friction at the reversals of its motion crossed faster than {v_max:.3g} "
                              f"(the force branches' end) taken as the applied force − I·ā (eq. (8), I = "
-                             f"{est.value:.4g}, read beside the curve of its force-driven branches): {len(mb)} "
-                             f"motion-driven presliding branch(es)")
+                             f"{est.value:.4g}, read beside the curve of the branches found before; the inertia "
+                             f"written is read again beside the final one): {len(mb)} motion-driven presliding "
+                             f"branch(es) besides those")
                 added.append(_motion_dataset(pr, mb, ff.noise))
         if added:
             _thin_all(added, notes)
+            for d, branches in found:
+                d.branches = branches
             datasets = datasets + added
             chain_notes = []
             tfit, unresolved, n_br, sensor_resolution = curve_from(datasets, chain_notes)
