@@ -28,8 +28,7 @@ from .errors import IdentificationError
 from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest, stribeck_plus_viscous
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, constant_velocity_levels, crossing_range,
-                      crossings, force_branches, force_motion_branches, motion_branches, noise_sd, prepare,
-                      sliding_levels, with_friction_from_force)
+                      crossings, force_branches, motion_branches, noise_sd, prepare, sliding_levels)
 from .threads import one_blas_thread
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
@@ -279,23 +278,6 @@ def sliding_branches(datasets) -> list:
     return out
 
 
-def _motion_dataset(pr: Prepared, branches: list, f_noise: float) -> PreslidingData:
-    """Motion-driven branches of one record as a data set of the likelihood: the friction read
-    with its noise ``f_noise``, the displacement known to the position sensor's resolution."""
-    ds = PreslidingData(branches, Gaussian(f_noise), name=f"{pr.source} (motion-driven)")
-    ds.x_noise = getattr(pr.position_noise, "step", None) or max(pr.th.x_noise, 1e-300)
-    return ds
-
-
-def _thin_all(datasets: list, notes: list) -> None:
-    for d in datasets:
-        found = len(d.branches)
-        d.branches = _thin(d.branches)
-        if found > len(d.branches):
-            notes.append(f"{d.name}: the {len(d.branches)} longest of its {found} presliding branches enter the "
-                         f"transition curve's likelihood (at most {MAX_BRANCHES} per data set)")
-
-
 def check_n(n) -> float:
     try:
         x = float(n)
@@ -489,17 +471,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 
     # --- presliding: both kinds of branches, one likelihood --------------------------------
     say(0.4, "finding presliding branches")
-    from .diagnose import recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
-
-    # eq. (8)'s inertia, read once from each record of an applied force: beside the model it
-    # is written with (``_with_inertia``), it takes the friction at the motion's reversals
-    inertia_reads = {id(r): recording_inertia(r) for r in recordings if r.force is not None and r.friction is None}
     datasets = []
-    wanting = []  # records of an applied force whose inertia is not known yet, with their speed cut
-    f_noise = {}  # the noise of eq. (8)'s friction, by ``id`` of the prepared record
     short = []  # (crossing range, resolution) of recordings whose reversals resolve no presliding
     slow = levels.slowest_steady_speed()
-    for given, pr in zip(recordings, preps):
+    for pr in preps:
         # presliding ends where gross sliding begins: below the slowest level; without levels
         # only the 97 % of D cut (F_s from the starting file) bounds the branches
         v_max = max(pr.th.v_floor, 0.3 * slow) if np.isfinite(slow) else np.inf
@@ -510,29 +485,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             ds.x_noise = getattr(pr.position_noise, "step", None) or noise_sd(pr.position_noise)
             datasets.append(ds)
         mb = motion_branches(pr)
-        read = inertia_reads.get(id(given), (None, ""))[0]
-        # a file's inertia where it holds one it did not hold (a value from the drawings, or
-        # read before: ``_with_inertia`` keeps it), with its σ; else the record's own reading
-        file_reads = base is not None and "inertia" not in (base.provenance.get("held") or {})
-        inertia = ((base.inertia, base.uncertainty.get("inertia", 0.0)) if file_reads else
-                   (read.value, read.stderr) if read is not None and read.usable else None)
-        if pr.friction is None and pr.force is not None and inertia is not None:
-            # a controller that prescribes the motion crosses presliding at each reversal at the
-            # commanded speed, faster than the force branches' creep (a feed slide made apart,
-            # stroking 5–80 µm at 8–130 µm/s, gave force branches of 2 µm at most, and a curve of
-            # one knot at 1.5 µm for a transition over 40 µm): with the inertia known, the
-            # friction there is eq. (8)'s, and its reversals are motion-driven branches
-            ff = with_friction_from_force(pr, *inertia)
-            mb = force_motion_branches(ff, v_max)
-            if mb:
-                notes.append(f"{pr.source}: friction at the reversals of its motion crossed faster than {v_max:.3g} "
-                             f"(the force branches' end) taken as the applied force − I·ā (eq. (8), I = "
-                             f"{inertia[0]:.4g}, " + ("the starting file's)" if file_reads else "read from the record)"))
-                f_noise[id(pr)] = ff.noise
-        elif pr.friction is None and pr.force is not None and base is None and np.isfinite(v_max):
-            wanting.append((pr, v_max))  # its inertia is read beside the curve of the branches found (below)
         if mb:
-            datasets.append(_motion_dataset(pr, mb, f_noise.get(id(pr), pr.th.f_noise)))
+            ds = PreslidingData(mb, Gaussian(pr.th.f_noise), name=f"{pr.source} (motion-driven)")
+            ds.x_noise = getattr(pr.position_noise, "step", None) or max(pr.th.x_noise, 1e-300)
+            datasets.append(ds)
         seen = [] if fb or mb else [(r, float(c.dx[min(MIN_BRANCH_POINTS, len(c.dx)) - 1])) for c in crossings(pr)
                                     if math.isfinite(r := crossing_range(c, pr.th))]
         if len(seen) >= MIN_RANGE_BRANCHES:
@@ -551,121 +507,79 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                          f"no reversals of a prescribed motion with measured friction)")
         else:
             notes.append(f"{pr.source}: {len(fb)} force-driven and {len(mb)} motion-driven presliding branch(es)")
-    _thin_all(datasets, notes)
-    # (``sliding_branches`` takes branches out of their data sets against the median branch:
-    # a second pass, with more branches, judges them afresh)
-    found = [(d, list(d.branches)) for d in datasets]
-
-    def curve_from(datasets: list, notes: list):
-        """The transition curve's knots and maximum-likelihood fit on ``datasets`` (knots the
-        data do not resolve or determine dropped, each said in ``notes``): (fit or None, why
-        unresolved or None, branches used, the finest position resolution)."""
-        slid = sliding_branches(datasets)
-        if slid:
-            notes.append(f"{len(slid)} presliding branch(es) moved over {BRANCH_SPAN_RATIO:g}× the median branch "
-                         f"({'; '.join(slid)}): they slid, left out of the transition curve's likelihood")
-        n_br = sum(len(d.branches) for d in datasets)
-        tfit = None
-        unresolved = None
-        sensor_resolution = min((d.x_noise for d in datasets), default=math.nan)  # the finest position sensor's
-        if n_br and knots is None:
-            try:
-                z = knots_from_data(datasets, n)
-                if len(z) - 1 < len(KNOT_FRACTIONS):
-                    # the sensor's resolution, not the contact, set how many segments the curve has
-                    notes.append(f"transition curve: {len(z) - 1} knot(s), not {len(KNOT_FRACTIONS)}: the others fell "
-                                 f"within {RESOLVED:g} × the position resolution ({sensor_resolution:.3g}) of a knot already "
-                                 f"placed, and the sensor does not tell them apart")
-            except UnresolvedCurve as e:
-                # presliding shorter than the position sensor resolves (an encoder step as long as the
-                # whole transition): the curve is held, said so, and S(v) is still fitted
-                unresolved = e
-                notes.append(f"transition curve: {e} (held, not estimated){picked_on_few}")
-                n_br = 0
-        elif n_br:
-            z = check_knots(knots, datasets)
-        elif short and knots is None:
-            unresolved = UnresolvedCurve(max(r for r, _ in short), max(q for _, q in short),
-                                         f"the turn threshold x_turn or the travel of {MIN_BRANCH_POINTS} samples")
-            notes.append(f"transition curve: {unresolved} (held, not estimated)")
-        if n_br:
-            say(0.5, f"maximum-likelihood estimator on {n_br} branches")
+    for d in datasets:
+        found = len(d.branches)
+        d.branches = _thin(d.branches)
+        if found > len(d.branches):
+            notes.append(f"{d.name}: the {len(d.branches)} longest of its {found} presliding branches enter the "
+                         f"transition curve's likelihood (at most {MAX_BRANCHES} per data set)")
+    slid = sliding_branches(datasets)
+    if slid:
+        notes.append(f"{len(slid)} presliding branch(es) moved over {BRANCH_SPAN_RATIO:g}× the median branch "
+                     f"({'; '.join(slid)}): they slid, left out of the transition curve's likelihood")
+    n_br = sum(len(d.branches) for d in datasets)
+    tfit = None
+    unresolved = None
+    sensor_resolution = min((d.x_noise for d in datasets), default=math.nan)  # the finest position sensor's
+    if n_br and knots is None:
+        try:
+            z = knots_from_data(datasets, n)
+            if len(z) - 1 < len(KNOT_FRACTIONS):
+                # the sensor's resolution, not the contact, set how many segments the curve has
+                notes.append(f"transition curve: {len(z) - 1} knot(s), not {len(KNOT_FRACTIONS)}: the others fell "
+                             f"within {RESOLVED:g} × the position resolution ({sensor_resolution:.3g}) of a knot already "
+                             f"placed, and the sensor does not tell them apart")
+        except UnresolvedCurve as e:
+            # presliding shorter than the position sensor resolves (an encoder step as long as the
+            # whole transition): the curve is held, said so, and S(v) is still fitted
+            unresolved = e
+            notes.append(f"transition curve: {e} (held, not estimated){picked_on_few}")
+            n_br = 0
+    elif n_br:
+        z = check_knots(knots, datasets)
+    elif short and knots is None:
+        unresolved = UnresolvedCurve(max(r for r, _ in short), max(q for _, q in short),
+                                     f"the turn threshold x_turn or the travel of {MIN_BRANCH_POINTS} samples")
+        notes.append(f"transition curve: {unresolved} (held, not estimated)")
+    if n_br:
+        say(0.5, f"maximum-likelihood estimator on {n_br} branches")
+        tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+        if knots is not None and tfit.beyond:
+            # knots the user placed are kept as given, and what the data say of them is said
+            notes.append(f"transition curve: the knot(s) given at z = {', '.join(f'{z[i]:.3g}' for i in tfit.beyond)} "
+                         f"lie above every force change the branches reach ({tfit.asked:.3g}): F_d there is not "
+                         f"determined by the data (its value and σ are no estimate)")
+        for _ in range(len(z)):
+            beyond = list(tfit.beyond)
+            if not beyond or knots is not None or len(z) - len(beyond) < 2:
+                break
+            # segments above every force change the branches reach: no datum depends on their
+            # rise (``TransitionFit.beyond``); the curve ends at the last knot the data reach into
+            # and goes on with that segment's slope (the branches' top knot sits where the
+            # furthest one stopped moving in force, and may lie above what any of them asked)
+            notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in beyond)} lie above "
+                         f"every force change the branches reach ({tfit.asked:.3g}): not determined by the data, "
+                         f"dropped (the curve goes on with the slope of its last segment)")
+            z = np.delete(z, beyond)
             tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
-            if knots is not None and tfit.beyond:
-                # knots the user placed are kept as given, and what the data say of them is said
-                notes.append(f"transition curve: the knot(s) given at z = {', '.join(f'{z[i]:.3g}' for i in tfit.beyond)} "
-                             f"lie above every force change the branches reach ({tfit.asked:.3g}): F_d there is not "
-                             f"determined by the data (its value and σ are no estimate)")
-            for _ in range(len(z)):
-                beyond = list(tfit.beyond)
-                if not beyond or knots is not None or len(z) - len(beyond) < 2:
-                    break
-                # segments above every force change the branches reach: no datum depends on their
-                # rise (``TransitionFit.beyond``); the curve ends at the last knot the data reach into
-                # and goes on with that segment's slope (the branches' top knot sits where the
-                # furthest one stopped moving in force, and may lie above what any of them asked)
-                notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in beyond)} lie above "
-                             f"every force change the branches reach ({tfit.asked:.3g}): not determined by the data, "
-                             f"dropped (the curve goes on with the slope of its last segment)")
-                z = np.delete(z, beyond)
-                tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
-            flat = list(tfit.flat)
-            if flat and knots is None and len(z) - len(flat) >= 2:
-                # a segment the likelihood makes flat (its increment at the lower limit, 10⁻⁶ of the
-                # largest force change, below which no increment can go): the data do not resolve
-                # that knot; drop it and refit
-                notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in flat)} not resolved "
-                             f"by the data (flat segment): dropped")
-                z = np.delete(z, flat)
-                tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
-            loose = list(tfit.loose)
-            if loose and knots is None and len(z) - len(loose) >= 2:
-                # a rise the branches leave undetermined is not written as an estimate: its knot is
-                # dropped (a last one ends the curve at the knot before it) and the curve refitted
-                notes.append(f"transition curve: the rise to knot(s) at z = "
-                             f"{', '.join(f'{z[i]:.3g} (F_d {tfit.F[i]:.3g} ± {tfit.stderr[i]:.2g})' for i in loose)} "
-                             f"is not determined by the branches (σ over half of it): dropped")
-                z = np.delete(z, loose)
-                tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
-        return tfit, unresolved, n_br, sensor_resolution
-
-    chain_notes: list = []
-    tfit, unresolved, n_br, sensor_resolution = curve_from(datasets, chain_notes)
-    if wanting and tfit is not None and not tfit.unbounded:
-        # records whose inertia the force alone did not read: read beside the model with the
-        # curve of the branches found so far (a misfit of the friction that follows the
-        # acceleration would enter it; on the feed slide made apart with a ripple or a drift,
-        # 174 and 175 for 180, where the paper's curve in its place read −570), and their
-        # reversals added as motion-driven branches with the friction of eq. (8)
-        from .diagnose import inertia_beside_model
-        from .refine import sigma1_at_data_scale
-
-        beside = p.replace(transition_curve=TransitionCurve(kind="piecewise_linear", z=tuple(map(float, tfit.z)),
-                                                            F=tuple(map(float, tfit.F))), n=float(tfit.n))
-        s1 = sigma1_at_data_scale(p.stribeck, levels)
-        beside = beside if s1 is None else beside.replace(sigma1=s1)
-        added = []
-        for pr, v_max in wanting:
-            est = inertia_beside_model(pr.rec, beside)
-            if est is None or not est.usable:
-                continue
-            ff = with_friction_from_force(pr, est.value, est.stderr)
-            mb = force_motion_branches(ff, v_max)
-            if mb:
-                notes.append(f"{pr.source}: friction at the reversals of its motion crossed faster than {v_max:.3g} "
-                             f"(the force branches' end) taken as the applied force − I·ā (eq. (8), I = "
-                             f"{est.value:.4g}, read beside the curve of the branches found before; the inertia "
-                             f"written is read again beside the final one): {len(mb)} motion-driven presliding "
-                             f"branch(es) besides those")
-                added.append(_motion_dataset(pr, mb, ff.noise))
-        if added:
-            _thin_all(added, notes)
-            for d, branches in found:
-                d.branches = branches
-            datasets = datasets + added
-            chain_notes = []
-            tfit, unresolved, n_br, sensor_resolution = curve_from(datasets, chain_notes)
-    notes.extend(chain_notes)
+        flat = list(tfit.flat)
+        if flat and knots is None and len(z) - len(flat) >= 2:
+            # a segment the likelihood makes flat (its increment at the lower limit, 10⁻⁶ of the
+            # largest force change, below which no increment can go): the data do not resolve
+            # that knot; drop it and refit
+            notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in flat)} not resolved "
+                         f"by the data (flat segment): dropped")
+            z = np.delete(z, flat)
+            tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+        loose = list(tfit.loose)
+        if loose and knots is None and len(z) - len(loose) >= 2:
+            # a rise the branches leave undetermined is not written as an estimate: its knot is
+            # dropped (a last one ends the curve at the knot before it) and the curve refitted
+            notes.append(f"transition curve: the rise to knot(s) at z = "
+                         f"{', '.join(f'{z[i]:.3g} (F_d {tfit.F[i]:.3g} ± {tfit.stderr[i]:.2g})' for i in loose)} "
+                         f"is not determined by the branches (σ over half of it): dropped")
+            z = np.delete(z, loose)
+            tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
     if tfit is not None and tfit.unbounded:
         # the likelihood pushed a segment to the limit of 20× the largest force change of any
         # branch: the branches do not bound F_d there, and the curve is no estimate
@@ -744,7 +658,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     from .refine import STUCK_DAMPING_RATIO, sigma1_at_damping_ratio, sigma1_at_data_scale
 
     reading_sigma1 = None if base is not None else sigma1_at_data_scale(p.stribeck, levels)
-    p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start, reading_sigma1, inertia_reads)
+    p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start, reading_sigma1)
     if base is None and not any(pr.friction is not None for pr in preps):
         # friction taken from an applied force alone (eq. (8)): the refinement below does not
         # estimate σ1 (force ramps do not determine it) but simulates with it, and so does the
@@ -821,8 +735,7 @@ MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not f
 
 
 def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: bool, held: dict, notes: list,
-                  start: str, reading_sigma1: float | None = None,
-                  reads_of: dict | None = None) -> tuple[FrictionParams, float | None]:
+                  start: str, reading_sigma1: float | None = None) -> tuple[FrictionParams, float | None]:
     """Eq. (8)'s inertia I, read from the recordings that log an applied force
     (``diagnose.recording_inertia``: the force regressed on the mean acceleration beside a free
     steady curve while sliding steadily, no model entering). Written with its σ where it is
@@ -831,14 +744,13 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
     is kept (a value from the drawings is usually better than a regression on a log), and the
     notes say what the recording reads. Without a file and without a usable reading, it is held
     at the data's own reading where there is one (``_held_inertia``: ``reading_sigma1`` is the
-    σ1 of the model read beside), else at the built-in default; named as held either way.
-    ``reads_of``: the readings already made, by ``id`` of their recording."""
+    σ1 of the model read beside), else at the built-in default; named as held either way."""
 
     from .diagnose import recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
 
     reads, loose = [], []  # usable readings; readings too uncertain to write as an estimate
     for r in recordings:
-        est, why = (reads_of or {}).get(id(r)) or recording_inertia(r)  # (read before, where it was)
+        est, why = recording_inertia(r)
         if r.force is not None and r.friction is None:
             notes.append(f"{r.source}: inertia {why}")  # "inertia read as …" / "inertia not read: …"
         if est is not None:

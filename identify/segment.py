@@ -750,13 +750,12 @@ class Crossing:
     sample leaving the reversal to the next turning point, the friction change ``dF`` and the
     displacement ``dx``, both positive in the new direction; ``D`` = new level − F_b, the
     level being the median friction over the middle third of the stroke; ``speed``, the
-    velocity in the new direction along it; ``at``, the record's index of its first sample."""
+    velocity in the new direction along it."""
 
     dF: np.ndarray
     dx: np.ndarray
     D: float
     speed: np.ndarray
-    at: int = 0
 
 
 def crossings(prep: Prepared) -> list[Crossing]:
@@ -794,7 +793,7 @@ def crossings(prep: Prepared) -> list[Crossing]:
             if D < 20 * th.f_noise:
                 continue
             out.append(Crossing(dF=direction * (F[s:nxt] - Fb), dx=direction * (x[s:nxt] - x[s]), D=float(D),
-                                speed=direction * v[s:nxt], at=a0 + s))
+                                speed=direction * v[s:nxt]))
     return out
 
 
@@ -862,67 +861,13 @@ def motion_branches(prep: Prepared, *, min_points: int = MIN_BRANCH_POINTS) -> l
     up to its end (``crossing_end``), is one branch with the displacement from the reversal as
     input and the friction change as the measured output. D = the swing to where sliding
     takes over (eq. (5) at the sliding velocity reached)."""
-    return _crossing_branches(prep, crossings(prep), min_points)
-
-
-def _crossing_branches(prep: Prepared, found: list, min_points: int) -> list[Branch]:
     out = []
-    for c in found:
+    for c in crossings(prep):
         m, D = crossing_end(c, prep.th)
         if m < min_points or c.dx[m - 1] <= prep.th.x_turn:
             continue
         out.append(Branch(force=c.dF[:m], displacement=c.dx[:m], D=D, driven="motion"))
     return out
-
-
-@dataclass(frozen=True)
-class ForceFriction:
-    """Eq. (8)'s friction read from an applied force: the record with it as its friction, that
-    friction's noise, and how far the inertia's own σ moves it at each sample (σ_I·|ā|)."""
-
-    prep: Prepared
-    noise: float
-    inertia_spread: np.ndarray
-
-
-def with_friction_from_force(prep: Prepared, inertia: float, inertia_sd: float) -> ForceFriction:
-    """The recording with eq. (8)'s friction, the applied force less I·ā: ā the mean
-    acceleration over the smoothing window, (v(t + h) − v(t − h))/2h with h half the window
-    (within each stretch between time gaps), as the diagnosis takes it, so its noise is
-    √2·I·v_noise/2h added to the force's. For ``motion_branches``: on a machine whose
-    controller prescribes the motion (a feed slide's strokes, a joint's moves), presliding is
-    crossed at the reversals at the commanded speed, faster than a force ramp creeps."""
-    t, v, th = prep.rec.time, prep.velocity, prep.th
-    h = max(1, th.window // 2)
-    acc = np.zeros_like(v)
-    for a0, b0 in prep.chunks:
-        i = np.arange(a0, b0)
-        lo, hi = np.maximum(i - h, a0), np.minimum(i + h, b0 - 1)
-        span = t[hi] - t[lo]
-        acc[a0:b0] = np.where(span > 0, (v[hi] - v[lo]) / np.where(span > 0, span, 1.0), 0.0)
-    dt = float(np.median(np.diff(t))) if len(t) > 1 else 1.0
-    noise = math.hypot(th.f_noise, math.sqrt(2.0) * inertia * th.v_noise / (2 * h * dt))
-    eq8 = Prepared(prep.rec, v, prep.force - inertia * acc, prep.force, prep.position_noise, prep.usable,
-                   prep.chunks, th, prep.sign_flipped, list(prep.notes))
-    return ForceFriction(eq8, noise, inertia_sd * np.abs(acc))
-
-
-def force_motion_branches(ff: ForceFriction, min_speed: float, *, min_points: int = MIN_BRANCH_POINTS) -> list[Branch]:
-    """``motion_branches`` on eq. (8)'s friction (``with_friction_from_force``), of the
-    crossings that are no force branch's and that the inertia's σ does not move: their median
-    speed up to their end at least ``min_speed`` (the force branches' end: a slower crossing is
-    theirs, and a reversal counts once), and σ_I·|ā| under the force's noise all along them (a
-    robot joint's fast moves, reversed at 30 rad/s², would carry I's 14 % into the friction
-    change: two such crossings, their curve's top at 17.8 N·m over 0.6 mrad for the
-    generator's 14.5 over 3.4, cost that joint its drift)."""
-    prep, th = ff.prep, ff.prep.th
-
-    def clean(c: Crossing) -> bool:
-        m, _ = crossing_end(c, th)
-        return (m >= min_points and np.median(c.speed[:m]) >= min_speed
-                and float(np.max(ff.inertia_spread[c.at:c.at + m])) <= th.f_noise)
-
-    return _crossing_branches(prep, [c for c in crossings(prep) if clean(c)], min_points)
 
 
 def crossing_range(c: Crossing, th: Thresholds) -> float:

@@ -5,22 +5,15 @@ dropped, said so, and the curve written still carries a transition into sliding.
 
 import numpy as np
 
-import leuven_friction.identify.fit as fit_mod
 from leuven_friction.identify.data import load_recording
 from leuven_friction.identify.fit import fit_recordings
 from synth import servo_stage_lugre as S
 
 
-def _fit(tmp_path):
+def test_knots_above_every_branch_force_are_dropped_and_the_curve_reaches_sliding(tmp_path):
     csv = tmp_path / "stage.csv"
     S.record(str(csv), 505, soft_frac=0.40, soft_k=2.5)
-    return fit_recordings([load_recording(csv)])
-
-
-def test_knots_above_every_branch_force_are_dropped_and_the_curve_reaches_sliding(tmp_path, monkeypatch):
-    # the force branches alone: the servo's reversals, crossed faster than they creep, left out
-    monkeypatch.setattr(fit_mod, "force_motion_branches", lambda *a, **k: [])
-    res = _fit(tmp_path)
+    res = fit_recordings([load_recording(csv)])
     assert any("lie above every force change the branches reach" in n for n in res.notes), res.notes
     p = res.params
     z, F = np.array(p.transition_curve.z), np.array(p.transition_curve.F)
@@ -32,17 +25,3 @@ def test_knots_above_every_branch_force_are_dropped_and_the_curve_reaches_slidin
     span = p.stribeck.positive.Fs - p.stribeck.negative.Fs
     reach = z[-1] + max(span - F[-1], 0.0) * (z[-1] - z[-2]) / (F[-1] - F[-2])
     assert reach < 3.0 * (S.FS_P + S.FS_N) / (S.SIG0 * (1 - 0.40)), (z, F, span)
-
-
-def test_the_servos_reversals_take_the_curve_on_towards_the_outer_loops_span(tmp_path):
-    # crossed under the servo faster than a force branch creeps, the reversals are branches of
-    # eq. (8)'s friction (the inertia read beside the force branches' curve): they reach the
-    # forces above the force branches, so no knot is dropped there, and the curve climbs on
-    # towards the span F_s⁺ − F_s⁻ of the bristles, 0.99 N (the force branches alone: 0.578 N
-    # at 3.75 µm), each knot still one some branch reaches into
-    res = _fit(tmp_path)
-    assert any("taken as the applied force − I·ā (eq. (8)" in n for n in res.notes), res.notes
-    assert not any("lie above every force change the branches reach" in n for n in res.notes), res.notes
-    F = np.array(res.params.transition_curve.F)
-    asked = max(min(np.max(b.force), 0.999 * b.D) for d in res.datasets for b in d.branches)
-    assert 0.7 < F[-1] < S.FS_P + S.FS_N and F[-2] < asked, (F, asked)
