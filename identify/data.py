@@ -31,6 +31,11 @@ UNITS = {
     "m": (1.0, "m"), "mm": (1e-3, "m"), "um": (1e-6, "m"), "µm": (1e-6, "m"), "micron": (1e-6, "m"), "nm": (1e-9, "m"),
     "rad": (1.0, "rad"), "mrad": (1e-3, "rad"), "urad": (1e-6, "rad"), "µrad": (1e-6, "rad"),
     "deg": (np.pi / 180, "rad"), "°": (np.pi / 180, "rad"),
+    # a telescope's or an optical stage's angle: minutes and seconds of arc (′ and ″, the primes,
+    # not the quotes a CSV writes its fields in)
+    "arcmin": (np.pi / 10800, "rad"), "arcminute": (np.pi / 10800, "rad"), "arcminutes": (np.pi / 10800, "rad"),
+    "′": (np.pi / 10800, "rad"), "arcsec": (np.pi / 648000, "rad"), "arcsecond": (np.pi / 648000, "rad"),
+    "arcseconds": (np.pi / 648000, "rad"), "″": (np.pi / 648000, "rad"),
     # a turn of a spindle or a disc; its speed in turns a minute (rev/min, 1/min: a quotient)
     "rev": (2 * np.pi, "rad"), "revs": (2 * np.pi, "rad"), "turn": (2 * np.pi, "rad"), "turns": (2 * np.pi, "rad"),
     "rpm": (2 * np.pi / 60, "rad/s"), "u/min": (2 * np.pi / 60, "rad/s"), "1/min": (2 * np.pi / 60, "rad/s"),

@@ -244,6 +244,23 @@ def test_turns_and_rpm_are_units_of_angle_and_angular_speed():
         assert si == "rad/s" and f == pytest.approx(2 * np.pi / 60), u
 
 
+def test_a_telescope_axis_in_arc_seconds_reads_as_radians(tmp_path):
+    from leuven_friction.identify.data import unit_of
+
+    # a second of arc is 1/3600 of a degree: 4.84813681109536e-6 rad (π/648000), a minute 60 of them
+    arcsec = 4.84813681109536e-6
+    for u in ("arcsec", "arcseconds", "″"):
+        assert unit_of(u, "position") == pytest.approx((arcsec, "rad"), rel=1e-14), u
+    assert unit_of("arcmin", "position") == pytest.approx((60 * arcsec, "rad"), rel=1e-14)
+    assert unit_of("arcsec/s", "velocity") == pytest.approx((arcsec, "rad/s"), rel=1e-14)
+    p = tmp_path / "mount.csv"
+    t = np.arange(20) * 4.0
+    p.write_text(_csv(["time [ms]", "position [arcsec]", "torque [mN*m]"], [t, 15.0 * t / 1000, np.full(20, 3100.0)]))
+    rec = load_recording(p)
+    assert rec.units["position"] == "rad"
+    np.testing.assert_allclose(rec.position[-1], 15.0 * 0.076 * arcsec, rtol=1e-12)  # sidereal rate for 76 ms
+    np.testing.assert_allclose(rec.force, 3.1, rtol=1e-12)
+
 def test_a_row_written_twice_is_dropped_and_a_repeated_time_with_other_values_refused(tmp_path):
     t, x, f = _signals()
     lines = _csv(["time [s]", "position [m]", "force [N]"], [t, x, f]).splitlines()
