@@ -514,13 +514,14 @@ def build_parser() -> argparse.ArgumentParser:
                    help="back-travels tried as what counts as a softening's reversal: the smallest significant "
                         "one × 1, 2, 4 … (K of them while 6 reversals remain; each screened, the best two fitted, "
                         "the one that fits best written; default 6; 1 tries the smallest alone, about a fifth "
-                        "faster, and names fewer effects right on the hidden-effect suite)")
+                        "faster, and names fewer effects right on the hidden-effect suite; a min_excursion set "
+                        "with --threshold is the one tried)")
     d.add_argument("--threshold", action="append", metavar="NAME=VALUE",
                    help="set a threshold of the motion reading instead of its derivation from the recording (SI "
                         "units; repeatable; the report's first note prints them all, marking those set): window "
                         "(the smoothing window, odd, samples: the velocity's noise and so the rest speed follow "
                         "it), v_rest (|v| below it counts as presliding), min_excursion (the back-travel of a "
-                        "significant reversal)")
+                        "significant reversal, a softening's too)")
     d.set_defaults(func=cmd_diagnose)
 
     sm = sub.add_parser("samples", help="list the sample recordings shipped with the package, or copy them out")

@@ -950,6 +950,9 @@ class Term:
     # ripple of 5 mm sat at u = −5.3 written in m and at 1.6 written in mm, and the
     # finite-difference steps, relative to |u|, differed by three times
     refs: Mapping[str, float] = field(default_factory=dict)
+    # a softening's reversals (at its own threshold) before the record's first gross sliding,
+    # and that sliding's time: what the session's first experiment counts (``unsettled``)
+    before_sliding: tuple[float, float] | None = None
 
     def value(self, pname: str, tr: str, u: float) -> float:
         """The parameter's value at its transformed coordinate ``u``."""
@@ -985,7 +988,8 @@ class Term:
         where they do not over the session, still one changing with time, and the speed where
         cycles of rising speeds keep them in order within each); at the lower bound: the change is over
         within the first few reversals, and a step between the session's first experiment and
-        the next would look the same — or None."""
+        the next would look the same; a softening's n_c within the reversals before the first
+        gross sliding (``before_sliding``): the same, where that first experiment makes many — or None."""
         where = self.bound(u)
         if self.settles == "tau" and where is None and "b" in self.at_bounds(u):
             # a drift whose b ends at a bound of its range (friction falling by 90 %, rising five
@@ -994,6 +998,22 @@ class Term:
             return (f"its b is at a bound of its range ({u[j]:.3g}): the change is a straight trend in time, its "
                     f"bend towards a settled value not seen, and a trend along the session's schedule would look "
                     f"the same. To tell: {EFFECTS[self.name].separated_by}")
+        if where is None and self.settles == "n_c" and self.before_sliding is not None:
+            # most of the change (≥ 63 %, n_c within the reversals counted there) over before the
+            # first gross sliding runs its course within the session's first experiment: the
+            # sliding after it sees only its end, so a step between that experiment and the rest
+            # — or a misfit following that experiment's own schedule of strokes — would look the
+            # same (the lower bound's reason, where that experiment makes many reversals: a
+            # telescope mount's 60 s of torque ramps, 6 of them, had its load's misfit named a
+            # softening of n_c 3.5)
+            count, t_sliding = self.before_sliding
+            j = [f[0] for f in self.free].index("n_c")
+            n_c = self.value("n_c", "log", u[j])
+            if count >= 1 and n_c <= count:
+                return (f"its n_c {n_c:.3g} is within the {count:.0f} reversals before the first gross sliding (at "
+                        f"{t_sliding:.4g} s): {-math.expm1(-count / n_c):.0%} of the change is over within the session's "
+                        f"first experiment, and a step between it and the rest (other strokes, other speeds) would look "
+                        f"the same. To tell: {EFFECTS[self.name].separated_by}")
         if where is None:
             return None
         lo, hi = next(f[2:4] for f in self.free if f[0] == self.settles)
@@ -1094,7 +1114,11 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
                                ("cs2", "lin", -0.5, 0.5), ("cc2", "lin", -0.5, 0.5)), refs={"wavelength": span})
     if name == "cyclic_softening":
         th = cmp_.min_excursion if threshold is None else float(threshold)
-        nrev = float(significant_reversals(cmp_.path, th)[-1])
+        counted = significant_reversals(cmp_.path, th)
+        nrev = float(counted[-1])
+        gs = gross_sliding(cmp_)
+        i_gs = int(np.argmax(gs)) if gs.any() else None
+        before = None if i_gs is None else (float(counted[i_gs]), float(t[i_gs]))
         return Term(name, {"min_excursion": th},
                     # n_c ≥ 3: a change complete within a couple of reversals is a constant
                     # stiffness factor, which the alternative's κ0 already holds; n_c at most a
@@ -1105,7 +1129,7 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
                     # ``Settings.must_settle`` is off it is not named)
                     (("h", "lin", -0.9, 5.0),
                      ("n_c", "log", math.log(3.0), math.log(max(nrev * softening_nc_max(strokes), 3.5)))),
-                    settles="n_c")
+                    settles="n_c", before_sliding=before)
     if name == "presliding_range":
         # e from the range fixed (−1: the stiffness rising with friction squared) to beyond the
         # stiffness fixed (2): a contact's tangential stiffness seldom grows faster than its friction
@@ -2086,8 +2110,10 @@ def softening_thresholds(cmp_: Comparison, tries: int = 1) -> list:
     still count SOFTENING_MIN_COUNT reversals; one counting the
     same reversals as a smaller one is left out. What wears a contact in need not be every
     back-travel past the presliding range: a session whose presliding tests make many small
-    cycles early would, counted that way, show the change late and never settle."""
-    if tries <= 1:
+    cycles early would, counted that way, show the change late and never settle. A back-travel
+    the user set (``--threshold min_excursion``) is what counts, and it alone is tried."""
+    reading = getattr(cmp_, "reading", None)
+    if tries <= 1 or (reading is not None and "min_excursion" in reading.set_by_user):
         return [cmp_.min_excursion]
     out, seen = [], None
     for k in range(tries):

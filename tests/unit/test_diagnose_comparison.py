@@ -727,6 +727,9 @@ def test_softening_thresholds_double_while_six_reversals_remain_and_skip_equal_c
     assert softening_thresholds(c, 1) == [0.1]
     assert softening_thresholds(c, 6) == [0.1, 0.2]
     assert softening_thresholds(SimpleNamespace(min_excursion=2.0, path=x), 6) == [2.0]  # none counts: the base kept
+    # a back-travel the user set is what counts as a reversal, the softening's too: it alone
+    set_ = SimpleNamespace(min_excursion=0.1, path=x, reading=SimpleNamespace(set_by_user=("min_excursion",)))
+    assert softening_thresholds(set_, 6) == [0.1]
 
 
 def test_observed_presliding_range_reads_the_crossing_after_each_turn_of_a_maxwell_slip_contact():
