@@ -732,6 +732,25 @@ def test_softening_thresholds_double_while_six_reversals_remain_and_skip_equal_c
     assert softening_thresholds(set_, 6) == [0.1]
 
 
+def test_a_softening_over_within_the_reversals_before_the_first_gross_sliding_is_not_seen_to_settle():
+    # 6 reversals before the first gross sliding at 60 s: an n_c of 3.5 has 1 − e^(−6/3.5) = 82 %
+    # of its change there, within the session's first experiment (a step between it and the
+    # rest looks the same); an n_c of 7 has 58 % (its n_c past those 6), and is judged as before
+    import math
+
+    from leuven_friction.identify.diagnose import Term
+
+    free = (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(3.0), math.log(40.0)))
+    term = Term("cyclic_softening", {"min_excursion": 1e-5}, free, settles="n_c", before_sliding=(6.0, 60.1))
+    why = term.unsettled(np.array([-0.3, math.log(3.5)]))
+    assert why is not None and "within the 6 reversals before the first gross sliding (at 60.1 s)" in why, why
+    assert "82%" in why, why
+    assert term.unsettled(np.array([-0.3, math.log(7.0)])) is None
+    # with none there (a record that slides before it reverses) only the bounds count
+    none_before = Term("cyclic_softening", {"min_excursion": 1e-5}, free, settles="n_c", before_sliding=(0.0, 1.0))
+    assert none_before.unsettled(np.array([-0.3, math.log(3.5)])) is None
+    assert "lower bound" in none_before.unsettled(np.array([-0.3, math.log(3.0)]))
+
 def test_observed_presliding_range_reads_the_crossing_after_each_turn_of_a_maxwell_slip_contact():
     # Strokes of ±10 presliding ranges of a Maxwell-slip contact (its friction computed here
     # element by element): after each turn the friction follows the reversal curve

@@ -261,6 +261,7 @@ def test_a_telescope_axis_in_arc_seconds_reads_as_radians(tmp_path):
     np.testing.assert_allclose(rec.position[-1], 15.0 * 0.076 * arcsec, rtol=1e-12)  # sidereal rate for 76 ms
     np.testing.assert_allclose(rec.force, 3.1, rtol=1e-12)
 
+
 def test_a_row_written_twice_is_dropped_and_a_repeated_time_with_other_values_refused(tmp_path):
     t, x, f = _signals()
     lines = _csv(["time [s]", "position [m]", "force [N]"], [t, x, f]).splitlines()
