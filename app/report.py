@@ -23,7 +23,7 @@ def diagnosis_html(d, source: str) -> str:
     for i, fig in enumerate(figs):
         parts.append(pio.to_html(fig, include_plotlyjs=(i == 0), full_html=False, config={"displaylogo": False}))
     title = f"Friction model diagnosis — {html.escape(source)}"
-    units = d.params_before.units
+    units = d.units
     steps = _table([[s["label"], f"{s['rms']:.4g}", f"{s['rms'] / d.noise:.2f}" if d.noise else "",
                      f"{s['rms_free']:.4g}", format_values(s["name"], s.get("params") or {}, units, s.get("sd")),
                      format_values(s["name"], s.get("params_decided") or {}, units)]

@@ -13,8 +13,10 @@ ALIASES = {  # header names, lower case, units stripped; the German ones as lab 
     # (Ft beside Fn: a tribometer's tangential force, which is its friction)
     "friction": ("friction", "friction_force", "friction_torque", "ff", "ft", "f_t", "tangential_force",
                  "reibkraft", "reibmoment", "reibung"),
+    # a slewing ring's or a pitch bearing's load is its tilting moment
     "normal_load": ("normal_load", "load", "normal_force", "fn", "f_n", "n_load", "normal", "n", "normal_load_n",
-                    "force_normal", "normalforce", "normalkraft"),
+                    "force_normal", "normalforce", "normalkraft", "preload", "axial_load", "bending_moment",
+                    "tilting_moment", "tilt_moment", "overturning_moment", "kippmoment", "biegemoment"),
     "temperature": ("temperature", "temp", "t_oil", "celsius", "temperatur"),
 }
 

@@ -71,8 +71,10 @@ _NOT_MEASURED = frozenset(("ref", "des", "desired", "target", "err", "error", "m
 _COMMANDED = frozenset(("cmd", "command", "commanded", "setpoint", "sp", "demand"))
 
 # the SI units each signal may land in (a header's unit of another kind is refused), and their names
+# (a normal load may be a moment: a slewing ring's or a pitch bearing's tilting moment presses its
+# raceways as a force does, and the load law reads only N/N0)
 SI_OF = {"time": ("s",), "position": ("m", "rad"), "force": ("N", "N*m"), "friction": ("N", "N*m"),
-         "velocity": ("m/s", "rad/s"), "normal_load": ("N",), "temperature": ("degC", "K")}
+         "velocity": ("m/s", "rad/s"), "normal_load": ("N", "N*m"), "temperature": ("degC", "K")}
 _KIND = {"s": "time", "m": "length", "rad": "angle", "N": "force", "N*m": "torque", "m/s": "speed",
          "rad/s": "angular speed", "degC": "temperature", "K": "temperature"}
 
@@ -596,6 +598,10 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         if rec.normal_load is None:
             raise DataError(f"{path}: column {cof!r} is a friction coefficient, and the friction μ·N needs the normal "
                             f"load: add its column (e.g. 'Fn [N]'), or name the friction with --columns friction=<column>")
+        if rec.units.get("normal_load") == "N*m":
+            raise DataError(f"{path}: column {cof!r} is a friction coefficient, and the friction μ·N needs the normal "
+                            f"load as a force, but {rec.columns['normal_load']!r} is a moment: log the friction itself, "
+                            f"or name it with --columns friction=<column>")
         rec.friction = rec.friction * rec.normal_load
         rec.units["friction"] = "N"
         notes.append(f"{cof}: a friction coefficient; the friction is it times the normal load "

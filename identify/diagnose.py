@@ -2487,6 +2487,13 @@ class Diagnosis:
     base_off: bool = False
     # a force periodic along the travel that keeps its sign both ways (``travel_force``), where shown
     travel_force: TravelForce | None = None
+    # the recording's normal load's SI unit, N or N·m (a tilting moment), where it has one
+    load_unit: str | None = None
+
+    @property
+    def units(self) -> dict:
+        """The units an effect's values are in: the parameter set's, and the load's (N0's)."""
+        return {**dict(self.params_before.units), **({"normal_load": self.load_unit} if self.load_unit else {})}
 
     # the first named effect, for callers that show one
     @property
@@ -2568,7 +2575,7 @@ class Diagnosis:
         return {
             "effects": list(self.effects), "effect": self.effect, "effect_params": self.effect_params,
             # the units every number here is in: the parameter set's (the recording is read into SI)
-            "units": dict(self.params_before.units),
+            "units": self.units,
             "space": self.space, "noise": self.noise, "rms_before": self.rms_before, "rms_after": self.rms_after,
             "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
             "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
@@ -2639,15 +2646,15 @@ class Diagnosis:
                      f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
             if s.get("params"):
                 own = "" if "params_decided" in s else f"the file's {s.get('name') or 'effect'}, refitted with it: "
-                L.append("      " + own + format_values(s["name"], s["params"], self.params_before.units, s.get("sd")))
+                L.append("      " + own + format_values(s["name"], s["params"], self.units, s.get("sd")))
             if s.get("params_decided") and s.get("params") and s["params_decided"] != s["params"]:
                 # σ counts the move from the value the folds' spread belongs to: show where that was
                 L.append("      decided beside the free steady curve: "
-                         + format_values(s["name"], s["params_decided"], self.params_before.units))
+                         + format_values(s["name"], s["params_decided"], self.units))
         if len(self.effects) > 1:
             L.append("Effects as written to the file (the last step's model, every effect refitted together):")
             for e in self.written_effects():
-                L.append(f"  {e['name']:22s} " + format_values(e["name"], e["params"], self.params_before.units, e["sd"]))
+                L.append(f"  {e['name']:22s} " + format_values(e["name"], e["params"], self.units, e["sd"]))
         L.append("Per regime (RMS before → after the refit → final, the model written; the noise floor of that "
                  "regime's samples):")
         for k, r in self.regimes.items():
@@ -3146,6 +3153,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                         f"recording has none: diagnose it with a model without that effect (fit this recording "
                         f"first), or give the load (--columns normal_load=<column>)")
     cmp_ = scored_comparison(rec, params, s)
+    if rec.normal_load is None and getattr(rec, "ignored", None):
+        # no load candidate without a load: a column the reader passed over may be one (a
+        # pitch bearing's bending moment, left out where the user named only the drive torque)
+        cmp_.notes.append(f"columns not read as any signal: {', '.join(map(str, rec.ignored))} — a load that presses "
+                          f"the contact among them is read with --columns normal_load=<column>, and only then is "
+                          f"normal_load a candidate")
     base_params = params.replace(effects=())
     meas = cmp_.measured
     n = len(meas)
@@ -3493,6 +3506,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                              if reidentified else
                              "the model written refitted from it and from the file's, and from the file's left less: "
                              "the file's kept" if final_reid.used else
+                             "worse: the file's kept" if final_reid.gap_new >= final_reid.gap_file else
                              f"not clearly better (under {STEADY_MIN_GAIN:.0%} less, or the file's within "
                              f"{STEADY_MISFIT:g} noise sds): the file's kept"))
     if params.model == "leuven":
@@ -3646,7 +3660,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      unused=unused, work=DiagnosisWork(perf_counter() - started, engine.sims, engine.sim_seconds),
                      reading={"window": int(cmp_.window), "v_rest": float(cmp_.v_rest),
                               "min_excursion": float(cmp_.min_excursion)}, base_off=base_off,
-                     travel_force=tf if tf is not None and tf.shown else None)
+                     travel_force=tf if tf is not None and tf.shown else None,
+                     load_unit=rec.units.get("normal_load") if rec.normal_load is not None else None)
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written

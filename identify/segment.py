@@ -307,9 +307,13 @@ def check_force_or_friction(rec: Recording) -> None:
     naming the columns that were not recognised and how to name one."""
     if rec.force is None and rec.friction is None:
         why = rec.unrecognised("force", "friction")
+        # two columns that could each be the force may be the force and a load pressing the contact
+        # (a pitch bearing's drive torque and its blade's bending moment): say how to name that too
+        load = ("; another of them, a load pressing the contact, with --columns normal_load=<column>"
+                if "force" in rec.ambiguous and rec.normal_load is None else "")
         raise IdentificationError(f"{rec.source}: needs a force (applied force/torque) or a friction column"
                                   + (f"; {why}: name it with --columns force=<column> (applied) or "
-                                     f"friction=<column> (measured)" if why else ""))
+                                     f"friction=<column> (measured){load}" if why else ""))
 
 
 def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | None = None) -> Prepared:
@@ -375,17 +379,18 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
         th.load_tol = max(5.0 * white_noise_sd(rec.normal_load), 0.02 * abs(N0))
     th.override(overrides)
     if rec.normal_load is not None:
+        lu = rec.units.get("normal_load", "N")  # N, or N*m for a tilting moment
         usable = np.abs(N - N0) <= th.load_tol
         if usable.mean() >= MIN_PLATEAU_SHARE:
-            notes.append(f"normal load: plateau {N0:.4g} N; {int((~usable).sum())} samples off the plateau "
-                         f"(|N - N0| > {th.load_tol:.3g} N, N averaged over the window) left out")
+            notes.append(f"normal load: plateau {N0:.4g} {lu}; {int((~usable).sum())} samples off the plateau "
+                         f"(|N - N0| > {th.load_tol:.3g} {lu}, N averaged over the window) left out")
         else:
             # a load that varies through the session (a schedule, a drifting contact): keeping
             # only its plateau would leave too little to fit; the base model then averages over
             # the loads, and `diagnose` tells whether the friction follows them
             notes.append(f"normal load: no plateau (only {100 * usable.mean():.0f} % of the samples within "
-                         f"{th.load_tol:.3g} N of its 95th percentile {N0:.4g} N; it ranges "
-                         f"{np.min(rec.normal_load):.4g}–{np.max(rec.normal_load):.4g} N): every sample is used, "
+                         f"{th.load_tol:.3g} {lu} of its 95th percentile {N0:.4g} {lu}; it ranges "
+                         f"{np.min(rec.normal_load):.4g}–{np.max(rec.normal_load):.4g} {lu}): every sample is used, "
                          f"S(v) and the transition curve average over the loads (run diagnose to see whether "
                          f"friction follows the load)")
             usable = np.ones(n, dtype=bool)

@@ -13,3 +13,8 @@ def diagnose_file(tmp_path, df, name: str, float_format: str = "%.10g") -> dict:
     out = tmp_path / "report.json"
     assert main(["diagnose", str(path), "--json", str(out)]) == 0
     return json.loads(out.read_text())
+
+
+def written(rep: dict, name: str) -> dict:
+    """The effect ``name`` as a diagnosis's JSON report says the file has it (values and σ)."""
+    return next(e for e in rep["written_effects"] if e["name"] == name)

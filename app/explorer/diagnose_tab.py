@@ -143,7 +143,7 @@ class DiagnoseTab:
             self.gui_csv.visible = True
         if d.effects:
             named = ", ".join(d.effects)
-            units = d.params_before.units
+            units = d.units
             text = ("Effects, in the order named: "
                     + "; ".join(f"**{name}** ({EFFECTS[name].description})" for name in d.effects)
                     # the values written (every effect refitted together, ± 1 σ): they have no controls

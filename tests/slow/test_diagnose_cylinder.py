@@ -14,6 +14,7 @@ import yaml
 
 from leuven_friction.app.cli import main
 from synth import hydraulic_cylinder as H
+from tests.cli_runs import written
 
 
 def _fit(tmp_path, case):
@@ -27,10 +28,6 @@ def _diagnose(tmp_path, csv, base):
     out = tmp_path / "cylinder.json"
     assert main(["diagnose", str(csv), "--params", str(base), "--json", str(out)]) == 0
     return json.loads(out.read_text())
-
-
-def _written(rep, name):
-    return next(e for e in rep["written_effects"] if e["name"] == name)
 
 
 @pytest.mark.slow
@@ -56,7 +53,7 @@ def test_a_load_changing_all_session_is_fitted_on_both_sides_and_named_alone(tmp
     assert p["uncertainty"]["stribeck.positive.Fc"] < 0.1 * abs(p["stribeck"]["positive"]["Fc"]), p["uncertainty"]
     rep = _diagnose(tmp_path, csv, base)
     assert rep["effects"] == ["normal_load"], rep["effects"]
-    load = _written(rep, "normal_load")
+    load = written(rep, "normal_load")
     assert abs(load["params"]["alpha"] - truth["effect"]["alpha"]) < 3 * load["sd"]["alpha"] + 0.05, load
 
 
@@ -65,7 +62,7 @@ def test_a_ripple_along_the_stroke_is_named_with_the_simulators_wavelength(tmp_p
     truth, csv, base = _fit(tmp_path, "ripple")
     rep = _diagnose(tmp_path, csv, base)
     assert rep["effects"] == ["position_ripple"], rep["effects"]
-    rip = _written(rep, "position_ripple")
+    rip = written(rep, "position_ripple")
     lam, a = truth["effect"]["lam"], truth["effect"]["a"]
     assert abs(rip["params"]["wavelength"] - lam) < 3 * rip["sd"]["wavelength"] + 0.01 * lam, rip
     assert abs(rip["params"]["a"] - a) < 3 * rip["sd"]["a"] + 0.01, rip

@@ -13,6 +13,7 @@ import yaml
 
 from leuven_friction.app.cli import main
 from synth import servo_stage_lugre as S
+from tests.cli_runs import written
 
 T = 130.0
 
@@ -43,10 +44,6 @@ def _reaches_sliding(p, stiffness=S.SIG0):
     assert reach < 3.0 * (S.FS_P + S.FS_N) / stiffness, (z, F, span)
 
 
-def _written(rep, name):
-    return next(e for e in rep["written_effects"] if e["name"] == name)
-
-
 @pytest.mark.slow
 def test_the_control_fits_a_curve_that_reaches_sliding_and_names_nothing(tmp_path):
     csv, base = _fit(tmp_path, 101)
@@ -64,7 +61,7 @@ def test_the_control_fits_a_curve_that_reaches_sliding_and_names_nothing(tmp_pat
 def test_a_drift_beside_a_ripple_names_both_with_the_simulators_values(tmp_path):
     rep = _diagnose(tmp_path, *_fit(tmp_path, 606, drift_b=0.25, drift_tau=T / 3, rip_a=0.10, rip_lam=1.0e-3))
     assert sorted(rep["effects"]) == ["position_ripple", "time_drift"], rep["effects"]
-    rip, drift = _written(rep, "position_ripple"), _written(rep, "time_drift")
+    rip, drift = written(rep, "position_ripple"), written(rep, "time_drift")
     assert abs(rip["params"]["wavelength"] - 1.0e-3) < 0.02e-3, rip
     assert abs(rip["params"]["a"] - 0.10) < 3 * rip["sd"]["a"] + 0.03, rip
     assert abs(drift["params"]["b"] - 0.25) < 3 * drift["sd"]["b"] + 0.05, drift
@@ -77,7 +74,7 @@ def test_a_drift_beside_a_ripple_names_both_with_the_simulators_values(tmp_path)
 def test_a_load_the_friction_follows_is_named_with_its_exponent(tmp_path):
     rep = _diagnose(tmp_path, *_fit(tmp_path, 303, load_var=True, alpha=0.7))
     assert rep["effects"] == ["normal_load"], rep["effects"]
-    load = _written(rep, "normal_load")
+    load = written(rep, "normal_load")
     assert abs(load["params"]["alpha"] - 0.7) < 3 * load["sd"]["alpha"] + 0.05, load
 
 
@@ -93,4 +90,4 @@ def test_a_softening_over_the_first_reversals_is_named_or_said_seen_and_nothing_
     assert set(rep["effects"]) <= {"cyclic_softening"}, rep["effects"]
     assert "cyclic_softening" in rep["effects"] + rep["unsettled"], (rep["effects"], rep["unsettled"])
     if rep["effects"]:
-        assert _written(rep, "cyclic_softening")["params"]["h"] < 0, rep["written_effects"]
+        assert written(rep, "cyclic_softening")["params"]["h"] < 0, rep["written_effects"]

@@ -9,12 +9,12 @@ import math
 
 import numpy as np
 import pytest
-import yaml
 
 from leuven_friction.app.cli import main
 from leuven_friction.identify.paramfile import load_params
 from leuven_friction.model.simulate import stribeck_curve
 from synth import telescope_mount as S
+from tests.cli_runs import written
 
 
 def _fitted(tmp_path, case):
@@ -29,10 +29,6 @@ def _diagnosed(tmp_path, csv, base, *extra):
     out = tmp_path / f"{csv.stem}.json"
     assert main(["diagnose", str(csv), "--params", str(base), "--json", str(out), *extra]) == 0
     return json.loads(out.read_text())
-
-
-def _written(rep, name):
-    return next(e for e in rep["written_effects"] if e["name"] == name)
 
 
 @pytest.mark.slow
@@ -62,7 +58,7 @@ def test_a_load_is_named_and_a_change_over_within_the_torque_ramps_is_not_called
     csv, base, truth = _fitted(tmp_path, "c_load")
     rep = _diagnosed(tmp_path, csv, base)
     assert rep["effects"] == ["normal_load"], rep["effects"]
-    load = _written(rep, "normal_load")
+    load = written(rep, "normal_load")
     assert abs(load["params"]["alpha"] - truth["load_alpha"]) < 3 * load["sd"]["alpha"] + 0.03, load
     assert all(c["name"] != "cyclic_softening" or "before the first gross sliding" in c["unsettled"]
                for c in rep["candidates"] if c.get("unsettled")), rep["candidates"]
@@ -77,6 +73,6 @@ def test_a_softening_counted_from_the_back_travel_the_user_sets_is_counted_from_
     rep = _diagnosed(tmp_path, csv, base, "--threshold", f"min_excursion={back!r}")
     assert rep["reading"]["min_excursion"] == pytest.approx(back, rel=1e-12)
     assert "cyclic_softening" in rep["effects"], (rep["effects"], rep["unsettled"])
-    soft = _written(rep, "cyclic_softening")
+    soft = written(rep, "cyclic_softening")
     assert soft["params"]["min_excursion"] == pytest.approx(back, rel=1e-12), soft
     assert abs(soft["params"]["h"] - truth["soft_h"]) < 3 * soft["sd"]["h"], soft

@@ -216,6 +216,8 @@ def test_missing_force_column_is_one_line_naming_the_file(tmp_path):
 @pytest.mark.parametrize("extra, says", [
     ("motor_current", r"none of motor_current was recognised as one: name it with --columns force=<column>"),
     ("tau_a [N*m],tau_b [N*m]", r"tau_a \[N\*m\], tau_b \[N\*m\] could each be force: name it with --columns"),
+    # one of two may be a load pressing the contact (a pitch bearing's bending moment)
+    ("tau_a [N*m],tau_b [N*m]", r"another of them, a load pressing the contact, with --columns normal_load=<column>"),
 ])
 def test_a_force_column_not_taken_is_named_with_how_to_name_it(tmp_path, extra, says):
     path = tmp_path / "unnamed.csv"

@@ -262,6 +262,26 @@ def test_a_telescope_axis_in_arc_seconds_reads_as_radians(tmp_path):
     np.testing.assert_allclose(rec.force, 3.1, rtol=1e-12)
 
 
+def test_a_pitch_bearings_bending_moment_is_its_normal_load_in_newton_metres(tmp_path):
+    # a slewing ring's load is its tilting moment: 'bending moment [kN*m]' beside the drive's
+    # 'drive torque [kN*m]' is the load, not a second candidate for the force
+    p = tmp_path / "pitch.csv"
+    t = np.arange(20) * 0.01
+    p.write_text(_csv(["t [s]", "pitch angle [deg]", "drive torque [kN*m]", "bending moment [kN*m]"],
+                      [t, 40.0 + 0.05 * t, np.full(20, 31.5), np.full(20, 3986.8)]))
+    rec = load_recording(p)
+    assert rec.columns["force"] == "drive torque [kN*m]" and rec.columns["normal_load"] == "bending moment [kN*m]"
+    assert rec.units["normal_load"] == "N*m"
+    np.testing.assert_allclose(rec.normal_load, 3.9868e6, rtol=1e-12)
+    np.testing.assert_allclose(rec.force, 3.15e4, rtol=1e-12)
+    # a friction coefficient times a moment is no friction force: refused in one line
+    q = tmp_path / "cof.csv"
+    q.write_text(_csv(["time [s]", "position [deg]", "mu", "bending moment [kN*m]"],
+                      [t, 40.0 + 0.05 * t, np.full(20, 0.1), np.full(20, 3986.8)]))
+    with pytest.raises(DataError, match=r"cof.csv: column 'mu' is a friction coefficient.*'bending moment \[kN\*m\]' is a moment") as e:
+        load_recording(q)
+    assert "\n" not in str(e.value)
+
 def test_a_row_written_twice_is_dropped_and_a_repeated_time_with_other_values_refused(tmp_path):
     t, x, f = _signals()
     lines = _csv(["time [s]", "position [m]", "force [N]"], [t, x, f]).splitlines()
