@@ -272,6 +272,11 @@ def cmd_diagnose(args) -> int:
         raise UserError(f"diagnose: {e}") from None
     print(file=sys.stderr)
     print(d.text())
+    if args.refit_base and d.effects:
+        # the option chooses what is written where nothing is named; a model with effects named
+        # is refitted with them in any case
+        print(f"--refit-base: not used: {', '.join(d.effects)} named, and the model written is the base refitted "
+              f"with {'them' if len(d.effects) > 1 else 'it'}", file=sys.stderr)
     with outputs:  # all or none
         if args.json:
             outputs.write_text(args.json, json.dumps(d.summary(), indent=2) + "\n")

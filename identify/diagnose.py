@@ -1567,12 +1567,23 @@ def _thinned(mask: np.ndarray) -> np.ndarray:
     return idx[::stride]
 
 
+LEVEL_RANGE = 5.0  # the alternative's level g within ×1/5 … ×5 of the file's
+STIFFNESS_RANGE = 20.0  # its presliding stiffness κ0 within ×1/20 … ×20
+
+
+def _factor_said(x: float, span: float) -> str:
+    """'×0.830', or '×20.000 (at the end of its range ×1/20–×20)': a factor at a bound of its
+    range is where the record pushed it, not where it settled."""
+    at = abs(abs(math.log(x)) - math.log(span)) <= SETTLE_TOL
+    return f"×{x:.3f}" + (f" (at the end of its range ×1/{span:g}–×{span:g})" if at else "")
+
+
 def _fit_bounds(terms: list, fit_k0: bool) -> tuple[np.ndarray, np.ndarray]:
     """Bounds of ``_fit``'s vector: log g, (log κ0), every term's free parameters."""
-    lo, hi = [-math.log(5.0)], [math.log(5.0)]
+    lo, hi = [-math.log(LEVEL_RANGE)], [math.log(LEVEL_RANGE)]
     if fit_k0:
-        lo.append(-math.log(20.0))
-        hi.append(math.log(20.0))
+        lo.append(-math.log(STIFFNESS_RANGE))
+        hi.append(math.log(STIFFNESS_RANGE))
     for term in terms:
         for _, _, a, b in term.free:
             lo.append(a)
@@ -3494,8 +3505,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # the alternative's level scales the whole friction beside the free steady curve; the model
     # written refits the S(v) levels themselves (its note below): two different factors. Said as
     # "all friction ×g", not "level ×g": the latter read as a change of S(v) by that much
-    steps[1]["label"] = (f"alternative (free steady curve): all friction ×{null.g:.3f}, "
-                         f"presliding stiffness ×{null.k0:.3f}")
+    steps[1]["label"] = (f"alternative (free steady curve): all friction {_factor_said(null.g, LEVEL_RANGE)}, "
+                         f"presliding stiffness {_factor_said(null.k0, STIFFNESS_RANGE)}")
     if final_reid is not None:
         cmp_.notes.append(f"S(v) identified anew for the model written from the steady sliding ({final_reid.levels} speed "
                           f"levels, the level and the friction effects divided out; the Markov estimator, holding what "

@@ -178,17 +178,21 @@ def test_the_file_a_diagnosis_writes_starts_the_next_one_from_its_last_gap(tmp_p
     assert r1["steps"][0]["rms"] > 3 * r2["steps"][0]["rms"]
 
 
-def test_the_model_written_from_a_fitted_file_holds_only_what_stayed_held(tmp_path):
+def test_the_model_written_from_a_fitted_file_holds_only_what_stayed_held(tmp_path, capsys):
     # a fitted file holds F_s at F_c and n at 7; the diagnosis refits both (the S(v) levels, n,
     # σ1 by output error) when it names an effect: the file it writes no longer says they are
-    # held, says where they moved, and still holds what it left (v_s, δ, σ2)
+    # held, says where they moved, and still holds what it left (v_s, δ, σ2). --refit-base,
+    # which chooses what is written where nothing is named, says it was not used
     import yaml
 
     fitted, written = tmp_path / "fit.yaml", tmp_path / "diag.yaml"
     assert main(["fit", "sample:effect_position_periodic", "--out", str(fitted)]) == 0
     held_before = yaml.safe_load(fitted.read_text())["provenance"]["held"]
     assert "stribeck.positive.Fs" in held_before and "n" in held_before
-    assert main(["diagnose", "sample:effect_position_periodic", "--params", str(fitted), "--out", str(written)]) == 0
+    capsys.readouterr()
+    assert main(["diagnose", "sample:effect_position_periodic", "--params", str(fitted), "--out", str(written),
+                 "--refit-base"]) == 0
+    assert "--refit-base: not used: position_ripple named" in capsys.readouterr().err
     prov = yaml.safe_load(written.read_text())["provenance"]
     assert "position_ripple" in prov["diagnosis"] and "the S(v) levels" in prov["diagnosis"]
     moved = [k for k in held_before if k not in prov["held"]]

@@ -751,6 +751,15 @@ def test_a_softening_over_within_the_reversals_before_the_first_gross_sliding_is
     assert none_before.unsettled(np.array([-0.3, math.log(3.5)])) is None
     assert "lower bound" in none_before.unsettled(np.array([-0.3, math.log(3.0)]))
 
+def test_a_factor_of_the_alternative_at_a_bound_of_its_range_is_said_to_be_there():
+    # κ0 within ×1/20 … ×20: at ×20 the record pushed it to the end of its range, at ×0.83 it settled
+    from leuven_friction.identify.diagnose import _factor_said
+
+    assert _factor_said(0.83, 20.0) == "×0.830"
+    assert _factor_said(20.0, 20.0) == "×20.000 (at the end of its range ×1/20–×20)"
+    assert _factor_said(1 / 20.0, 20.0).endswith("(at the end of its range ×1/20–×20)")
+    assert _factor_said(4.9, 5.0) == "×4.900"  # 2 % inside a bound is not at it
+
 def test_observed_presliding_range_reads_the_crossing_after_each_turn_of_a_maxwell_slip_contact():
     # Strokes of ±10 presliding ranges of a Maxwell-slip contact (its friction computed here
     # element by element): after each turn the friction follows the reversal curve
