@@ -70,6 +70,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import re
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from time import perf_counter
@@ -582,6 +583,9 @@ def motion_reading(rec: Recording, overrides: dict | None = None) -> MotionReadi
 
 
 # what to do where a column read as the applied force carries no I·ẍ (measured friction under a force's name)
+# words of a force column's name that say it is applied, not measured friction
+APPLIED_WORDS = frozenset(("drive", "motor", "applied", "actuator", "servo", "cmd", "command", "commanded", "setpoint",
+                           "demand", "control", "input"))
 NAME_IT_FRICTION = ("if it is measured friction, name it so (friction, friction_torque) or pass "
                     "--columns friction=<column>")
 
@@ -605,7 +609,10 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
     L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
     reading = inertia_read(f, vel, m.t, L0, m.v_rest)
     est = reading.estimate
-    friction_named_force = f"; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}"
+    # (not said of a column whose name says it is applied: a drive's or a motor's torque)
+    words = set(re.split(r"[^a-z]+", str(rec.columns.get("force", "")).lower()))
+    friction_named_force = ("" if words & APPLIED_WORDS else
+                            f"; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}")
     if rec.normal_load is not None:
         # friction that follows a load changing along the record is a slow part of the force the
         # regression on the acceleration does not model, and can hide I·ẍ as well

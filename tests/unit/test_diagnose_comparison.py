@@ -1060,3 +1060,25 @@ def test_a_chord_jacobian_is_scipys_at_its_anchor_and_a_refit_along_it_simulates
     for fit in (along, plain):
         rms = math.sqrt(fit.rss / len(eng.c.time))
         assert rms < 1.1 * sd
+
+
+def test_the_hint_that_a_force_column_is_measured_friction_is_not_given_where_its_name_says_applied(tmp_path):
+    # friction alone (no I·ẍ in it) under a force's name: the regression finds no inertia, and
+    # "if it is measured friction, name it so" is the hint — not for a column named as a drive's
+    # torque, which is applied by its name (a pitch bearing made apart got the hint every time)
+    from leuven_friction.identify.data import load_recording
+    from leuven_friction.identify.diagnose import recording_inertia
+
+    t = np.arange(120000) * 1e-3
+    v = 0.02 * (1 + 0.1 * np.sin(2 * np.pi * 1.3 * t)) * np.tanh(5 * np.sin(2 * np.pi * t / 4))
+    x = np.cumsum(v) * 1e-3
+    f = 2.0 * np.tanh(v / 1e-3) + 0.01 * np.random.default_rng(3).standard_normal(len(t))
+    whys = {}
+    for name in ("torque", "drive torque"):
+        path = tmp_path / f"{name.replace(' ', '_')}.csv"
+        np.savetxt(path, np.column_stack([t, x, f]), delimiter=",", fmt=["%.4f", "%.8f", "%.5f"],
+                   header=f"time [s],angle [rad],{name} [N*m]", comments="")
+        est, whys[name] = recording_inertia(load_recording(path))
+        assert est is None and "gives no positive inertia" in whys[name], whys[name]
+    assert "if it is measured friction, name it so" in whys["torque"]
+    assert "measured friction" not in whys["drive torque"], whys["drive torque"]
