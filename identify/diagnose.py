@@ -3886,10 +3886,23 @@ class FrictionCompared:
     time: np.ndarray
     measured: np.ndarray
     model: np.ndarray
+    left_out: tuple = ()  # the set's effects the recording cannot drive (``drivable``), not predicted
 
     @property
     def rms(self) -> float:
         return _rms(self.measured - self.model)
+
+
+def drivable(params: FrictionParams, has_load: bool) -> tuple[FrictionParams, tuple]:
+    """``params`` without the effects that need a normal load where the recording has none, and
+    their names: a set a load recording's diagnosis extended, shown beside a recording without a
+    load, is drawn without that effect (and says so) rather than not at all."""
+    if has_load:
+        return params, ()
+    out = tuple(e["name"] for e in params.effects if e["name"] in EFFECTS and "load" in EFFECTS[e["name"]].needs)
+    if not out:
+        return params, ()
+    return params.replace(effects=tuple(e for e in params.effects if e["name"] not in out)), out
 
 
 def gap_by_regime(rec: Recording, params: FrictionParams) -> str:
@@ -3921,5 +3934,6 @@ def friction_compared(rec: Recording, params: FrictionParams, cmp_: Comparison |
     from ..model.effects import predict
 
     cmp_ = cmp_ or comparison_of(rec, params, "friction")
+    params, left_out = drivable(params, cmp_.load is not None)
     model = predict(params, "displacement", Signals(time=cmp_.time, position=cmp_.path, load=cmp_.load)).friction_force
-    return FrictionCompared(cmp_.time, cmp_.measured, cmp_.filtered(model))
+    return FrictionCompared(cmp_.time, cmp_.measured, cmp_.filtered(model), left_out)

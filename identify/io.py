@@ -91,6 +91,10 @@ def decode_text(raw: bytes, label) -> tuple[str, str]:
     """(text, encoding) of a table's bytes: UTF-8 (with or without a byte-order mark), else
     Windows-1252, which many lab programs on Windows still write (µ, °, ä as one byte each)."""
     refuse_workbook(raw[:16], label)
+    if b"\0" in raw[:SNIFF_BYTES]:
+        # a picture, an archive or a program's own format: Windows-1252 decodes nearly any bytes,
+        # and a PNG uploaded by mistake had been read as a table of one column named '‰PNG'
+        raise DataError(f"{label}: not a text file (it contains NUL bytes)")
     try:
         return raw.decode("utf-8-sig"), "utf-8-sig"
     except UnicodeDecodeError:

@@ -38,8 +38,16 @@ def web_message(e: Exception, name: str) -> str:
     return msg if name in msg else f"{name}: {msg}"
 
 
-def header_columns(content: bytes) -> list[str]:
-    """The column names of a CSV/TSV upload (the loader's separator guess), or []."""
+def as_markdown_text(text: str) -> str:
+    """Plain text (a loader's or a fit's note) for a Markdown panel: its * and _ escaped, so
+    'torque [mN*m]: converted from mN*m to N*m' keeps its asterisks instead of turning the text
+    between them to italics."""
+    return re.sub(r"([\\*_])", r"\\\1", str(text))
+
+
+def _head_table(content: bytes, rows: int):
+    """The first ``rows`` rows of a CSV/TSV upload as a data frame (the loader's separator
+    guess), or None."""
     import pandas as pd
 
     from ...identify.io import decode_text
@@ -47,16 +55,37 @@ def header_columns(content: bytes) -> list[str]:
     try:
         text, _ = decode_text(content, "upload")  # UTF-8, or Windows-1252 as the loader reads it
     except DataError:
-        return []
+        return None
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     if not lines:
-        return []
+        return None
     first = lines[0]
     sep = "\t" if first.count("\t") > first.count(",") else ("," if "," in first else (";" if ";" in first else r"\s+"))
     try:
-        return [str(c) for c in pd.read_csv(io.StringIO("\n".join(lines[:3])), sep=sep, engine="python").columns]
+        return pd.read_csv(io.StringIO("\n".join(lines[:rows + 1])), sep=sep, engine="python")
     except Exception:
-        return []
+        return None
+
+
+def header_columns(content: bytes) -> list[str]:
+    """The column names of a CSV/TSV upload (the loader's separator guess), or []."""
+    head = _head_table(content, 2)
+    return [] if head is None else [str(c) for c in head.columns]
+
+
+def has_numbers(content: bytes) -> bool:
+    """Whether a CSV/TSV upload has a column of numbers in its first rows (decimal point or
+    comma): a table whose columns could be chosen, not a page of prose."""
+    import pandas as pd
+
+    head = _head_table(content, 20)
+    if head is None or len(head) == 0:
+        return False
+    for c in head.columns:
+        col = head[c].astype(str).str.strip().str.replace(",", ".", regex=False)
+        if pd.to_numeric(col, errors="coerce").notna().mean() > 0.5:
+            return True
+    return False
 
 
 def friction_of(rec: Recording) -> tuple[np.ndarray | None, str]:
@@ -187,9 +216,10 @@ class DataTab:
             # a bad cell is the file's to correct; a column not found or not told apart is chosen here
             bad_row = re.search(r"\brow \d+", msg)
             previous, self.previous = self.previous, None
-            if previous is not None and (bad_row or not self.columns):
-                # nothing to choose on this page (no table, or a row to correct in the file): the
-                # recording that was there stays (a picture uploaded by mistake had replaced it)
+            if previous is not None and (bad_row or not has_numbers(content)):
+                # nothing to choose on this page (no table, no column of numbers — a page of prose
+                # —, or a row to correct in the file): the recording that was there stays (a
+                # picture or a text uploaded by mistake had replaced it)
                 with ctx.lock:
                     (s.recording_name, s.recording_bytes, s.mapping, s.flip_friction, ctx.recording,
                      ctx.fit) = previous
@@ -288,7 +318,7 @@ class DataTab:
                 rows.append(f"| {sig} | `{rec.columns[sig]}` | {rec.units.get(sig, '—')} | {SIGNAL_HELP.get(sig, '')} |")
             elif sig == "position" or (sig == "friction" and "force" not in rec.columns):
                 rows.append(f"| {sig} | **not found** | | choose its column under *Columns*, below the plot |")
-        notes = "; ".join(rec.notes)
+        notes = "; ".join(map(as_markdown_text, rec.notes))
         self.gui_info.content = (f"**{rec.source}** — {len(rec)} samples, {rec.time[-1] - rec.time[0]:.4g} s. "
                                  f"Recognised:\n\n" + "\n".join(rows) + f"\n\nSign: {sign_note}.  \n{notes}")
         with self.ctx.client.atomic():
@@ -336,22 +366,49 @@ class DataTab:
         gap_b, gap_a = gap(rec, before), gap(rec, res.params.replace(model=before.model))
         # a header without units was read as SI: said where the numbers are accepted, not only in the Data tab
         assumed = f"⚠ {name}: {rec.units_assumed}\n\n" if rec.units_assumed else ""
-        self.propose(Proposal(f"fit of {name}", res.params.replace(model=before.model), assumed + fit_summary(res),
-                              gap_b, gap_a))
+        from ...model import default_params
+
+        why = other_machine(before, rec)  # (the built-in default is never a start: not said each time)
+        start = (f"Started from nothing ({why}): what the data do not determine is held at the recording's own "
+                 f"scale.\n\n" if why and before != default_params(before.model) else "")
+        self.propose(Proposal(f"fit of {name}", res.params.replace(model=before.model),
+                              assumed + start + fit_summary(res), gap_b, gap_a))
         self.gui_status.content = f"Fit of **{name}** done: see the proposal."
+
+
+OTHER_MACHINE_SCALE = 30.0  # static friction this many times over or under a recording's forces: another machine's
+
+
+def other_machine(current, rec: Recording) -> str | None:
+    """Why the explorer's current set cannot be ``rec``'s machine, or None: it is the built-in
+    default (the paper's robot joint, whose σ1 and inertia mean nothing for another machine), it
+    is in other units (rad against m), or its static friction is over OTHER_MACHINE_SCALE times
+    the recording's forces, or under a 1/OTHER_MACHINE_SCALE of them (a telescope mount's
+    3 N·m set kept its 33 kg·m² on a pitch bearing of 40 kN·m, both in rad and N·m)."""
+    from ...model import default_params
+
+    if current == default_params(current.model):
+        return "the current set is the built-in default, the paper's robot joint"
+    if other_kind_of_machine(current.units, rec.units):
+        return f"the current set is in {current.units.get('position')}, the recording in {rec.units.get('position')}"
+    signal = rec.friction if rec.friction is not None else rec.force
+    st = current.stribeck
+    level = max(abs(st.positive.Fs), abs(st.negative.Fs), abs(st.positive.Fc), abs(st.negative.Fc))
+    if signal is None or not level > 0:
+        return None
+    scale = float(np.nanquantile(np.abs(np.asarray(signal, dtype=np.float64)), 0.95))
+    if scale > 0 and not 1.0 / OTHER_MACHINE_SCALE <= level / scale <= OTHER_MACHINE_SCALE:
+        return (f"the current set's static friction {level:.3g} is {level / scale:.3g} × the recording's forces "
+                f"({scale:.3g}, 95th percentile): another machine's")
+    return None
 
 
 def fit_start(current, rec: Recording):
     """The parameter set a fit of ``rec`` starts from (what it holds comes from there): the
-    explorer's current set, unless that is the built-in default — the paper's robot joint, whose
-    σ1 and inertia mean nothing for another machine — or in other units than the recording (rad
-    against m); then none, as ``leuven-friction fit`` without --params: σ1 and the inertia are
-    then held at the recording's own scale."""
-    from ...model import default_params
-
-    if current == default_params(current.model) or other_kind_of_machine(current.units, rec.units):
-        return None
-    return current.replace(model="leuven")
+    explorer's current set, unless it cannot be this machine's (``other_machine``); then none,
+    as ``leuven-friction fit`` without --params: σ1 and the inertia are then held at the
+    recording's own scale."""
+    return None if other_machine(current, rec) else current.replace(model="leuven")
 
 
 def gap(rec: Recording, p) -> float | None:
@@ -393,10 +450,11 @@ def fit_summary(res) -> str:
     if held:
         # each at the value its reason says (the current one, F_c, the slowest level's speed, …)
         lines.append(f"**Held** ({len(held)}), each as its reason says:\n"
-                     + "\n".join(f"- {k}: {without_cli_hints(r)}" for k, r in held.items()))
+                     + "\n".join(f"- {k}: {as_markdown_text(without_cli_hints(r))}" for k, r in held.items()))
     elif not res.stribeck_fit or not res.transition_fit:
         lines.append("**Held**: " + ", ".join(w for w, ok in (("S(v)", res.stribeck_fit),
                                                               ("transition curve", res.transition_fit)) if not ok))
     if res.notes:
-        lines.append("Notes:\n" + "\n".join(f"- {t}" for t in map(without_cli_hints, res.notes) if t))
+        lines.append("Notes:\n" + "\n".join(f"- {as_markdown_text(t)}" for t in map(without_cli_hints, res.notes)
+                                              if t))
     return "\n\n".join(lines)

@@ -24,6 +24,7 @@ class DiagnoseTab:
         self.ctx = ctx
         self.propose = propose
         self.shown = None  # the recording whose diagnosis the tab shows
+        self.status_of = None  # the recording the line under the Diagnose button is about
         with panel.add_tab("Diagnose"):
             self.gui_text = gui.add_markdown("Upload a recording, then press **Diagnose** (left): the workflow looks "
                                              "for the physical effect the model misses, adds it and refits. The "
@@ -73,6 +74,9 @@ class DiagnoseTab:
         if reason == "recording" and not self.job.busy():
             rec = self.ctx.recording
             self.gui_run.disabled = rec is None or rec.position is None
+            if self.gui_status.content and self.status_of != self.ctx.session.recording_name:
+                # a result or a failure of the recording before is not left under the button
+                self.gui_status.content = ""
             if rec is not None and self.shown is not None and self.shown != self.ctx.session.recording_name:
                 self._show_none(f"The last diagnosis was of {self.shown}; press **Diagnose** (left) for "
                                 f"{self.ctx.session.recording_name}.")
@@ -97,6 +101,7 @@ class DiagnoseTab:
     def _failed(self, kind: str, e: Exception) -> None:
         self._busy(False)
         self.gui_status.content = f"⚠ diagnosis failed: {e}"
+        self.status_of = self.ctx.session.recording_name
         self.ctx.notify("Diagnosis failed", f"{self.ctx.session.recording_name}: {type(e).__name__}: {e}", "red")
 
     def _diagnose(self) -> None:
@@ -126,6 +131,7 @@ class DiagnoseTab:
             self._busy(False)
             msg = without_cli_hints(str(e) if name in str(e) else f"{name}: {e}")
             self.gui_status.content = f"⚠ {msg}"
+            self.status_of = name
             self._show_none(f"**Diagnosis of {name} failed**: {msg}")
             ctx.notify("Diagnosis failed", msg, "red")
             return
@@ -156,6 +162,7 @@ class DiagnoseTab:
             self.propose(Proposal(f"diagnosis: {named}", d.params_after.replace(model=before.model), text,
                                   d.rms_before, d.rms_after))
         self.gui_status.content = status_line(d)
+        self.status_of = name
 
 
 def status_line(d) -> str:

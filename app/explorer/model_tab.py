@@ -288,8 +288,11 @@ class ModelTab:
 
             n = len(cmp_.time)
             # every set along the same comparison: the measured friction as the diagnosis takes it
-            model_lines = [(label, role, friction_compared(rec, q, cmp_).model) for label, role, q in shown
-                           if role != "overlay"]
+            compared = [(label, role, friction_compared(rec, q, cmp_)) for label, role, q in shown if role != "overlay"]
+            model_lines = [(label, role, c.model) for label, role, c in compared]
+            left = sorted({name for _, _, c in compared for name in c.left_out})
+            if left:
+                notes.append(f"drawn without {', '.join(left)}: {rec.source} has no normal-load column")
             bottom = {"kind": "data", "t": cmp_.time, "measured": cmp_.measured, "model": model_lines,
                       "name": rec.source + ("" if n == len(rec.time) else f" (first {n} samples)")}
         else:

@@ -1082,3 +1082,24 @@ def test_the_hint_that_a_force_column_is_measured_friction_is_not_given_where_it
         assert est is None and "gives no positive inertia" in whys[name], whys[name]
     assert "if it is measured friction, name it so" in whys["torque"]
     assert "measured friction" not in whys["drive torque"], whys["drive torque"]
+
+
+def test_a_set_with_a_load_effect_is_compared_without_it_on_a_recording_without_a_load():
+    # a set a load recording's diagnosis extended, beside a recording without a load column: the
+    # explorer draws it without the load effect and says so (it had shown "Could not draw")
+    from leuven_friction.identify.data import load_recording
+    from leuven_friction.identify.diagnose import drivable, friction_compared
+    from leuven_friction.model import default_params
+
+    t = np.arange(3000) * 1e-3
+    x = 0.02 * np.sin(2 * np.pi * t)
+    f = 30.0 * np.tanh(np.gradient(x, t) / 1e-3)
+    text = "time [s],position [rad],friction [N*m]\n" + "".join(f"{a},{b},{c}\n" for a, b, c in zip(t, x, f))
+    rec = load_recording(text, name="noload.csv")
+    loaded = default_params().replace(effects=({"name": "normal_load", "params": {"N0": 500.0, "alpha": 0.6}},))
+    plain, left = drivable(loaded, has_load=False)
+    assert left == ("normal_load",) and plain.effects == ()
+    assert drivable(loaded, has_load=True) == (loaded, ())
+    got, base = friction_compared(rec, loaded), friction_compared(rec, default_params())
+    assert got.left_out == ("normal_load",) and base.left_out == ()
+    np.testing.assert_array_equal(got.model, base.model)  # the set without its load effect, as given

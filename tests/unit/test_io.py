@@ -106,6 +106,10 @@ def test_unreadable_files_are_data_errors(tmp_path):
     (tmp_path / "bin.csv").write_bytes(b"\x00\x01\x02" * 50)
     with pytest.raises(DataError, match="bin.csv: not a text file"):
         load_recording(tmp_path / "bin.csv")
+    # as an upload's bytes too: a picture whose bytes Windows-1252 decodes had been read as a
+    # table of one column named '‰PNG'
+    with pytest.raises(DataError, match="picture.png: not a text file"):
+        load_recording(b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\x01\0" + b"x" * 64, name="picture.png")
     # a spreadsheet workbook, by file and as an upload's bytes: said what it is and what to do
     # (before, a workbook's bytes were read as a table with one column named 'PK…')
     import zipfile
