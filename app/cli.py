@@ -128,7 +128,7 @@ def cmd_simulate(args) -> int:
     stages.done(f"read {len(rec)} rows from {args.input}")
     if not args.params:
         print(default_params_warning(params.units, rec.units), file=sys.stderr)
-    elif (warning := units_mismatch(args.params, params.units, rec)):
+    elif (warning := units_mismatch(args.params, params, rec)):
         print(warning, file=sys.stderr)
     position = rec.position
     if args.smooth_path:
@@ -175,14 +175,18 @@ def default_params_warning(param_units: dict, rec_units: dict) -> str:
     return line
 
 
-def units_mismatch(path: str, param_units: dict, rec) -> str | None:
+def units_mismatch(path: str, params, rec) -> str | None:
     """A warning where a parameter file and a recording are of different kinds of machine (one in
-    m and N, the other in rad and N·m): the numbers would be applied to the recording as they
+    m and N, the other in rad and N·m), or of machines of another size (its friction 30 times the
+    recording's forces, or a thirtieth): the numbers would be applied to the recording as they
     are. Said, not refused: a header without units is read as SI of the kind its names suggest."""
-    from ..identify.data import other_kind_of_machine
+    from ..identify.data import other_kind_of_machine, other_size_of_machine
 
+    param_units = params.units
     if not other_kind_of_machine(param_units, rec.units):
-        return None
+        size = other_size_of_machine(params, rec)
+        return None if size is None else (f"warning: {path}: {size}; what the data do not determine is taken from it "
+                                           f"as it is (fit this recording without --params)")
     pu, ru = param_units.get("position"), rec.units.get("position")
     rf = rec.units.get("force") or rec.units.get("friction") or "?"
     return (f"warning: {path} is in {pu} and {param_units.get('force')}, {rec.source} in {ru} and {rf}: parameters of "
@@ -251,7 +255,7 @@ def cmd_diagnose(args) -> int:
     say_if_compiling()
     if args.params:
         params = _params(args.params, None)
-        if (warning := units_mismatch(args.params, params.units, rec)):
+        if (warning := units_mismatch(args.params, params, rec)):
             print(warning, file=sys.stderr)
     else:
         print("no --params: fitting the base model first", file=sys.stderr)
@@ -325,7 +329,7 @@ def cmd_fit(args) -> int:
     for r in recs:
         for note in r.notes:
             print(f"{r.source}: {note}", file=sys.stderr)
-        if base is not None and (warning := units_mismatch(args.params, base.units, r)):
+        if base is not None and (warning := units_mismatch(args.params, base, r)):
             print(warning, file=sys.stderr)
     for r in recs:
         check_force_or_friction(r)  # before the kernels' compile note: nothing will be simulated

@@ -690,6 +690,26 @@ def other_kind_of_machine(param_units, rec_units) -> bool:
     return bool(pu and ru and pu != ru)
 
 
+OTHER_MACHINE_SCALE = 30.0  # static friction this many times over or under a recording's forces: another machine's
+
+
+def other_size_of_machine(params, rec: Recording) -> str | None:
+    """Why a parameter set in the recording's units is still another machine's, or None: its
+    static friction over OTHER_MACHINE_SCALE times the recording's forces (their 95th
+    percentile), or under a 1/OTHER_MACHINE_SCALE of them (a telescope mount's 3 N·m set kept
+    its 33 kg·m² on a pitch bearing of 40 kN·m, both in rad and N·m)."""
+    signal = rec.friction if rec.friction is not None else rec.force
+    st = params.stribeck
+    level = max(abs(st.positive.Fs), abs(st.negative.Fs), abs(st.positive.Fc), abs(st.negative.Fc))
+    if signal is None or not level > 0:
+        return None
+    scale = float(np.nanquantile(np.abs(np.asarray(signal, dtype=np.float64)), 0.95))
+    if scale > 0 and not 1.0 / OTHER_MACHINE_SCALE <= level / scale <= OTHER_MACHINE_SCALE:
+        return (f"its static friction {level:.3g} is {level / scale:.3g} × the recording's forces ({scale:.3g}, "
+                f"95th percentile): another machine's")
+    return None
+
+
 def velocity_of(rec: Recording) -> np.ndarray:
     """The recorded velocity, or the backward difference of the position (first sample 0)."""
     if rec.velocity is not None:

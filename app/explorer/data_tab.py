@@ -15,7 +15,8 @@ import re
 import numpy as np
 import viser
 
-from ...identify.data import SIGNALS, Recording, load_recording, other_kind_of_machine, velocity_of
+from ...identify.data import (SIGNALS, Recording, load_recording, other_kind_of_machine, other_size_of_machine,
+                              velocity_of)
 from ...identify.errors import DataError
 from ...model.errors import FrictionError
 from .. import plots
@@ -376,31 +377,19 @@ class DataTab:
         self.gui_status.content = f"Fit of **{name}** done: see the proposal."
 
 
-OTHER_MACHINE_SCALE = 30.0  # static friction this many times over or under a recording's forces: another machine's
-
-
 def other_machine(current, rec: Recording) -> str | None:
     """Why the explorer's current set cannot be ``rec``'s machine, or None: it is the built-in
     default (the paper's robot joint, whose σ1 and inertia mean nothing for another machine), it
-    is in other units (rad against m), or its static friction is over OTHER_MACHINE_SCALE times
-    the recording's forces, or under a 1/OTHER_MACHINE_SCALE of them (a telescope mount's
-    3 N·m set kept its 33 kg·m² on a pitch bearing of 40 kN·m, both in rad and N·m)."""
+    is in other units (rad against m), or its friction is of another size
+    (``identify.data.other_size_of_machine``)."""
     from ...model import default_params
 
     if current == default_params(current.model):
         return "the current set is the built-in default, the paper's robot joint"
     if other_kind_of_machine(current.units, rec.units):
         return f"the current set is in {current.units.get('position')}, the recording in {rec.units.get('position')}"
-    signal = rec.friction if rec.friction is not None else rec.force
-    st = current.stribeck
-    level = max(abs(st.positive.Fs), abs(st.negative.Fs), abs(st.positive.Fc), abs(st.negative.Fc))
-    if signal is None or not level > 0:
-        return None
-    scale = float(np.nanquantile(np.abs(np.asarray(signal, dtype=np.float64)), 0.95))
-    if scale > 0 and not 1.0 / OTHER_MACHINE_SCALE <= level / scale <= OTHER_MACHINE_SCALE:
-        return (f"the current set's static friction {level:.3g} is {level / scale:.3g} × the recording's forces "
-                f"({scale:.3g}, 95th percentile): another machine's")
-    return None
+    size = other_size_of_machine(current, rec)
+    return None if size is None else f"the current set: {size}"
 
 
 def fit_start(current, rec: Recording):

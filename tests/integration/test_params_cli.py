@@ -172,6 +172,23 @@ def test_cli_warns_when_the_parameters_are_of_another_kind_of_machine(tmp_path, 
     assert len(line) == 1 and "joint.yaml" in line[0] and "stage.csv" in line[0] and "rad" in line[0]
 
 
+def test_cli_warns_when_the_parameters_are_of_a_machine_of_another_size(tmp_path, capsys):
+    # the paper's joint (static friction 63 N·m) along a pitch bearing's log of 40 kN·m, both in
+    # rad and N·m, the plant driven by the logged torque: it runs, and says the set's friction is
+    # of another machine
+    t = np.arange(0, 1, 1e-3)
+    rec = tmp_path / "pitch.csv"
+    pd.DataFrame({"t [s]": t, "pitch angle [rad]": 0.01 * np.sin(3 * t),
+                  "drive torque [N*m]": 4e4 * np.cos(3 * t)}).to_csv(rec, index=False)
+    par = tmp_path / "joint.yaml"
+    save_params(default_params(), par)
+    rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "force", "--params", par,
+                     "--out", tmp_path / "o.csv")
+    assert rc == 0, err
+    line = [ln for ln in err.splitlines() if ln.startswith("warning: ") and "another machine's" in ln]
+    assert len(line) == 1 and "joint.yaml" in line[0] and "static friction 63" in line[0], err
+
+
 def test_cli_fit_names_a_missing_position_column_before_any_work(tmp_path, capsys):
     t = np.arange(0, 1, 1e-3)
     rec = tmp_path / "f.csv"
