@@ -214,6 +214,10 @@ class DataTab:
             rec = load_recording(content, name=name, columns=s.mapping or None, require=("time",))
         except DataError as e:
             msg = web_message(e, name)
+            if "no column for" in msg and not has_numbers(content):
+                # a page of prose: its first line is no header, and there is nothing to choose
+                msg = (f"{name}: no column of numbers: not a recording (a table with time, position and force "
+                       f"or friction in columns)")
             # a bad cell is the file's to correct; a column not found or not told apart is chosen here
             bad_row = re.search(r"\brow \d+", msg)
             previous, self.previous = self.previous, None

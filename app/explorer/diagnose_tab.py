@@ -25,6 +25,7 @@ class DiagnoseTab:
         self.propose = propose
         self.shown = None  # the recording whose diagnosis the tab shows
         self.status_of = None  # the recording the line under the Diagnose button is about
+        self.failed_of = None  # the recording whose failed diagnosis the tab's text says
         with panel.add_tab("Diagnose"):
             self.gui_text = gui.add_markdown("Upload a recording, then press **Diagnose** (left): the workflow looks "
                                              "for the physical effect the model misses, adds it and refits. The "
@@ -77,9 +78,10 @@ class DiagnoseTab:
             if self.gui_status.content and self.status_of != self.ctx.session.recording_name:
                 # a result or a failure of the recording before is not left under the button
                 self.gui_status.content = ""
-            if rec is not None and self.shown is not None and self.shown != self.ctx.session.recording_name:
-                self._show_none(f"The last diagnosis was of {self.shown}; press **Diagnose** (left) for "
-                                f"{self.ctx.session.recording_name}.")
+            name = self.ctx.session.recording_name
+            last = self.shown or self.failed_of  # the recording the tab's text is about
+            if rec is not None and last is not None and last != name:
+                self._show_none(f"The last diagnosis was of {last}; press **Diagnose** (left) for {name}.")
 
     def _show_none(self, text: str) -> None:
         """The tab without a diagnosis: ``text``, no figures (a diagnosis of another recording, or
@@ -89,7 +91,7 @@ class DiagnoseTab:
             for handle in self.gui_plots:
                 handle.visible = False
             self.gui_csv.visible = False
-        self.shown = None
+        self.shown = self.failed_of = None
 
     def _busy(self, on: bool) -> None:
         self.gui_run.disabled = on
@@ -126,6 +128,7 @@ class DiagnoseTab:
         except Cancelled:
             self._busy(False)
             self.gui_status.content = "Diagnosis cancelled."
+            self.status_of = name
             raise
         except FrictionError as e:
             self._busy(False)
@@ -133,6 +136,7 @@ class DiagnoseTab:
             self.gui_status.content = f"⚠ {msg}"
             self.status_of = name
             self._show_none(f"**Diagnosis of {name} failed**: {msg}")
+            self.failed_of = name
             ctx.notify("Diagnosis failed", msg, "red")
             return
         self._busy(False)
