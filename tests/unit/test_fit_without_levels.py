@@ -345,3 +345,18 @@ def test_levels_whose_velocity_wanders_are_found_with_a_wider_tolerance_said_so(
     kept, _ = _levels_that_wander(tmp_path, rel_tol=0.06)
     assert not any("widened" in n for n in kept.notes)
     assert len(kept.levels.velocity) < len(res.levels.velocity)
+
+
+def test_a_diagnosis_without_a_load_lists_the_columns_it_did_not_read(fits):
+    # only a load read makes normal_load a candidate: a column passed over (here a strain gauge
+    # in volts) may be one, and the report says which were not read and how to read a load
+    from leuven_friction.identify.diagnose import diagnose
+
+    t, x, f = stick_slip(3)
+    gauge = 2.5 + 0.0 * t
+    rec = load_recording(_csv([t, x, f, gauge], ["time [s]", "position [m]", "friction [N]", "strain [V]"]),
+                         name="si.csv")
+    assert rec.ignored == ["strain [V]"] and rec.normal_load is None
+    d = diagnose(rec, fits[0].params)
+    said = [n for n in d.notes if n.startswith("columns not read as any signal")]
+    assert said and "strain [V]" in said[0] and "--columns normal_load=<column>" in said[0], d.notes
