@@ -17,8 +17,8 @@ COLORS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b")
 MAX_POINTS = 1000
 
 
-def _shown(unit: str) -> str:
-    """A unit as the controls write it (N·m, not the files' N*m)."""
+def shown_unit(unit: str) -> str:
+    """A unit as the page writes it (N·m, not the files' N*m)."""
     return unit.replace("*", "·")
 
 
@@ -220,7 +220,7 @@ def overview_figure(*, units: dict, hyst: list, strib: list, slip: list, bottom:
     fourth view, ``{"kind": "data", t, measured, model: [(label, role, F)]}`` or
     ``{"kind": "curve", z, F, zk, Fk, sigma}`` (the transition curve and its knots).
     """
-    pu, fu = units.get("position", "rad"), _shown(units.get("force", "N*m"))
+    pu, fu = units.get("position", "rad"), shown_unit(units.get("force", "N*m"))
     data, ann = [], []
     L, R, TOP, BOT = [0.0, 0.44], [0.56, 1.0], [0.58, 0.94], [0.0, 0.42]
     layout = dict(
@@ -357,7 +357,7 @@ def recording_figure(*, name: str, t, position, friction, friction_label: str, u
                      levels=None, model_curves: list = (), band=None) -> go.Figure:
     """Signals against time (top), friction against velocity with the constant-velocity
     levels found (bottom left), friction against displacement from each reversal (bottom right)."""
-    pu, fu = units.get("position", "?"), _shown(units.get("force", "?"))
+    pu, fu = units.get("position", "?"), shown_unit(units.get("force", "?"))
     data, ann = [], []
     TOP1, TOP2, BOT, L, R = [0.78, 1.0], [0.55, 0.74], [0.0, 0.42], [0.0, 0.44], [0.56, 1.0]
     layout = dict(
@@ -539,7 +539,7 @@ def diagnosis_travel_force_figure(d) -> go.Figure:
                            name=f"keeps its sign both ways: {tf.amplitude:.3g} ± {tf.sd:.2g}",
                            line=dict(color="#444444", dash="dash")))
     return _layout(fig, f"A force along the travel: residual folded over {tf.wavelength:.4g} {pu}",
-                   f"position within the period ({_shown(pu)})" if pu else "position within the period",
+                   f"position within the period ({shown_unit(pu)})" if pu else "position within the period",
                    f"measured − model ({unit})")
 
 

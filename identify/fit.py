@@ -543,7 +543,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         notes.append(f"transition curve: {unresolved} (held, not estimated)")
     if n_br:
         say(0.5, f"maximum-likelihood estimator on {n_br} branches")
-        tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+
+        def refit(knots_z):
+            return fit_transition_curve(datasets, knots_z, n=n, fit_n=fit_n)
+
+        tfit = refit(z)
         if knots is not None and tfit.beyond:
             # knots the user placed are kept as given, and what the data say of them is said
             notes.append(f"transition curve: the knot(s) given at z = {', '.join(f'{z[i]:.3g}' for i in tfit.beyond)} "
@@ -557,29 +561,26 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             # rise (``TransitionFit.beyond``); the curve ends at the last knot the data reach into
             # and goes on with that segment's slope (the branches' top knot sits where the
             # furthest one stopped moving in force, and may lie above what any of them asked)
-            notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in beyond)} lie above "
-                         f"every force change the branches reach ({tfit.asked:.3g}): not determined by the data, "
-                         f"dropped (the curve goes on with the slope of its last segment)")
-            z = np.delete(z, beyond)
-            tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+            z, tfit = dropped_knots(z, beyond, refit, notes,
+                                    f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in beyond)} lie "
+                                    f"above every force change the branches reach ({tfit.asked:.3g}): not determined "
+                                    f"by the data, dropped (the curve goes on with the slope of its last segment)")
         flat = list(tfit.flat)
         if flat and knots is None and len(z) - len(flat) >= 2:
             # a segment the likelihood makes flat (its increment at the lower limit, 10⁻⁶ of the
             # largest force change, below which no increment can go): the data do not resolve
             # that knot; drop it and refit
-            notes.append(f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in flat)} not resolved "
-                         f"by the data (flat segment): dropped")
-            z = np.delete(z, flat)
-            tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+            z, tfit = dropped_knots(z, flat, refit, notes,
+                                    f"transition curve: knot(s) at z = {', '.join(f'{z[i]:.3g}' for i in flat)} not "
+                                    f"resolved by the data (flat segment): dropped")
         loose = list(tfit.loose)
         if loose and knots is None and len(z) - len(loose) >= 2:
             # a rise the branches leave undetermined is not written as an estimate: its knot is
             # dropped (a last one ends the curve at the knot before it) and the curve refitted
-            notes.append(f"transition curve: the rise to knot(s) at z = "
-                         f"{', '.join(f'{z[i]:.3g} (F_d {tfit.F[i]:.3g} ± {tfit.stderr[i]:.2g})' for i in loose)} "
-                         f"is not determined by the branches (σ over half of it): dropped")
-            z = np.delete(z, loose)
-            tfit = fit_transition_curve(datasets, z, n=n, fit_n=fit_n)
+            z, tfit = dropped_knots(z, loose, refit, notes,
+                                    f"transition curve: the rise to knot(s) at z = "
+                                    f"{', '.join(f'{z[i]:.3g} (F_d {tfit.F[i]:.3g} ± {tfit.stderr[i]:.2g})' for i in loose)} "
+                                    f"is not determined by the branches (σ over half of it): dropped")
     if tfit is not None and tfit.unbounded:
         # the likelihood pushed a segment to the limit of 20× the largest force change of any
         # branch: the branches do not bound F_d there, and the curve is no estimate
@@ -732,6 +733,14 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 
 
 MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not fit its levels
+
+
+def dropped_knots(z: np.ndarray, drop: list, refit, notes: list, why: str):
+    """The knots ``z`` without those at ``drop`` (the data do not determine them: ``why`` is
+    noted) and the transition curve ``refit`` on the rest."""
+    notes.append(why)
+    z = np.delete(z, drop)
+    return z, refit(z)
 
 
 def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: bool, held: dict, notes: list,

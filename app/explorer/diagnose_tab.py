@@ -143,8 +143,7 @@ class DiagnoseTab:
         self.shown = name
         with ctx.client.atomic():
             # the report without the command line's options (the page has its own controls, or none)
-            shown = "\n".join(without_cli_hints(ln) if "--" in ln else ln for ln in d.text().splitlines())
-            self.gui_text.content = f"**Diagnosis of {name}**\n\n```\n{shown}\n```"
+            self.gui_text.content = f"**Diagnosis of {name}**\n\n```\n{report_on_page(d.text())}\n```"
             figures = plots.diagnosis_report_figures(d)[:MAX_FIGURES]
             for i, handle in enumerate(self.gui_plots):
                 if i < len(figures):
@@ -153,7 +152,7 @@ class DiagnoseTab:
             self.gui_csv.visible = True
         if d.effects:
             named = ", ".join(d.effects)
-            units = d.units
+            units = {k: plots.shown_unit(v) for k, v in d.units.items()}
             text = ("Effects, in the order named: "
                     + "; ".join(f"**{name}** ({EFFECTS[name].description})" for name in d.effects)
                     # the values written (every effect refitted together, ± 1 σ): they have no controls
@@ -167,6 +166,16 @@ class DiagnoseTab:
                                   d.rms_before, d.rms_after))
         self.gui_status.content = status_line(d)
         self.status_of = name
+
+
+def report_on_page(report: str) -> str:
+    """The diagnosis report as the page shows it: without the command line's options (the page
+    has its own controls, or none), and a torque written N·m as on the rest of the page (N*m is
+    the files' spelling; the report's own asterisks, the candidates' marks, stay). A line keeps
+    its indent, which sets the report's columns."""
+    shown = "\n".join(ln[:len(ln) - len(ln.lstrip())] + without_cli_hints(ln) if "--" in ln else ln
+                       for ln in report.splitlines())
+    return shown.replace("N*m", plots.shown_unit("N*m"))
 
 
 def status_line(d) -> str:

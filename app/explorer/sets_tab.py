@@ -12,6 +12,7 @@ import viser
 from ...identify.paramfile import params_to_yaml
 from ...model import FrictionParams, default_params
 from ...model.errors import FrictionError, ParameterError
+from .. import plots
 from .context import Context, Proposal
 from .fields import fields_of, get_value
 from .session import Entry
@@ -231,7 +232,7 @@ class SetsTab:
         ctx.proposal = prop
         gap = ""
         if prop.gap_before is not None and prop.gap_after is not None:
-            u = str(prop.params.units.get("force", "")).replace("*", "·")
+            u = plots.shown_unit(str(prop.params.units.get("force", "")))
             gap = (f"\n\n**Gap** (RMS measured − model): {prop.gap_before:.4g} {u} now → "
                    f"**{prop.gap_after:.4g} {u}** with the proposal")
             if prop.gap_after > prop.gap_before:

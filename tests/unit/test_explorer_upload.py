@@ -27,3 +27,18 @@ def test_a_loaders_note_keeps_its_asterisks_and_underscores_in_the_data_tab():
     assert as_markdown_text("torque [mN*m]: converted from mN*m to N*m") == \
         "torque [mN\\*m]: converted from mN\\*m to N\\*m"
     assert as_markdown_text("tau_motor_a: taken as force") == "tau\\_motor\\_a: taken as force"
+
+
+def test_the_diagnose_tab_writes_a_torque_as_the_rest_of_the_page_and_keeps_the_candidates_marks():
+    # the report is the command line's (files' N*m, option hints); the tab showed N*m beside the
+    # Sets tab's N·m
+    from leuven_friction.app.explorer.diagnose_tab import report_on_page
+
+    report = ("  model as given                               0.912 (9.12 × noise)\n"
+              "      alpha = 0.597 ± 0.057, N0 = 1.2e+04 N*m\n"
+              "* normal_load     held out −21.3 %, folds 5/5\n"
+              "  nothing named; refit the base with --refit-base")
+    shown = report_on_page(report).splitlines()
+    assert shown[1] == "      alpha = 0.597 ± 0.057, N0 = 1.2e+04 N·m"
+    assert shown[2].startswith("* normal_load")
+    assert "--" not in shown[3] and shown[3].startswith("  nothing named")
