@@ -287,6 +287,14 @@ def _split_header(name: str) -> tuple[str, str | None]:
 
 
 NO_COLUMN = "-"  # ``--columns velocity=-``: take no column for this signal, not even a recognised one
+NEGATED = "-"  # ``--columns force=-F_coil``: that column with its sign turned (a sensor mounted the other way)
+
+
+def columns_option(sig: str, col: str, negated: bool = False) -> str:
+    """The ``--columns`` option that takes column ``col`` as signal ``sig`` (with its sign
+    turned if ``negated``), quoted for a shell where the name has a space or a bracket."""
+    pair = f"{sig}={NEGATED if negated else ''}{col}"
+    return f'--columns "{pair}"' if re.search(r"[\s\[\]()*;&|<>$'\\]", pair) else f"--columns {pair}"
 
 
 def parse_column_mapping(spec: str | None) -> dict:
@@ -458,13 +466,25 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         for c, unit in row_units.items():
             if headers[str(c)][1] is None:
                 headers[str(c)] = (headers[str(c)][0], unit)
+    def named(col: str) -> str | None:
+        """The file's column ``col`` names: itself, or the one whose header is that name with a
+        unit ("Zeit" for "Zeit [ms]"); None if none or several."""
+        if col in headers:
+            return col
+        same = [c for c, (key, _) in headers.items() if _split_header(col)[0] == key and _split_header(col)[1] is None]
+        return same[0] if len(same) == 1 else None
+
+    negated = set()
     for sig, col in list(mapping.items()):
-        if col not in headers:
-            # a name given without the header's unit ("Zeit" for "Zeit [ms]") names that column
-            same = [c for c, (key, _) in headers.items() if _split_header(col)[0] == key and _split_header(col)[1] is None]
-            if len(same) != 1:
-                raise DataError(f"{path}: column {col!r} given for {sig} is not in the file (columns: {', '.join(in_file)})")
-            mapping[sig] = same[0]
+        found = col if col in headers else None  # (a column whose own name starts with '-' is itself)
+        if found is None and col.startswith(NEGATED) and (found := named(col[len(NEGATED):].strip())) is not None:
+            negated.add(sig)
+        found = found or named(col)
+        if found is None:
+            raise DataError(f"{path}: column {col!r} given for {sig} is not in the file (columns: {', '.join(in_file)})"
+                            + ("; a leading '-' takes a column with its sign turned, e.g. force=-F" if "-" not in col
+                               and sig in ("force", "friction", "position", "velocity") else ""))
+        mapping[sig] = found
     taken = set(mapping.values())
     for sig in SIGNALS:
         if sig in mapping or sig in refused:
@@ -553,6 +573,9 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 f"{path}: column {col!r} row {row_of(r)}: {what}"
                 + (f" ({len(bad)} such rows)" if len(bad) > 1 else "")
             )
+        if sig in negated:
+            values = -values
+            notes.append(f"{col}: taken as {sig} with its sign turned, as asked ({columns_option(sig, col, True)})")
         unit = (units or {}).get(sig) or headers[col][1]
         if col == cof:
             # a friction coefficient: dimensionless (a header may say "-" or "1"), N times it is the friction

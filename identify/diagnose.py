@@ -89,7 +89,7 @@ from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
-from .data import DataError, Recording
+from .data import DataError, Recording, columns_option
 from .errors import IdentificationError
 from .segment import (across_gaps, checked_threshold, gap_threshold, gross_sliding_mask, piecewise_slope, speed_levels,
                       steady_velocity_mask, time_gaps)
@@ -608,6 +608,9 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
     longest = averaging_limit(m.t, m.compared.path, m.min_excursion)
     L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
     reading = inertia_read(f, vel, m.t, L0, m.v_rest)
+    reversed_why = reversed_force(rec, reading)
+    if reversed_why:
+        raise DataError(reversed_why)
     est = reading.estimate
     # (not said of a column whose name says it is applied: a drive's or a motor's torque)
     words = set(re.split(r"[^a-z]+", str(rec.columns.get("force", "")).lower()))
@@ -744,19 +747,25 @@ def _compared(rec: Recording, params: FrictionParams, space: str, m: MotionReadi
     if m.tachometer:
         vel, v_noise = m.tachometer
         notes.append("velocity from the velocity column (quieter than the smoothed position)")
+    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
+    longest = averaging_limit(t, path, min_exc)
+    L0 = averaging_length(0.0, f_sd, v_noise, dt, w, len(t), longest)
+    # the model-free reading (at the shortest window): a force of the other sign is refused in
+    # either space, as `fit` refuses it (``reversed_force``)
+    reading0 = inertia_read(f, vel, t, L0, v_rest)
+    reversed_why = reversed_force(rec, reading0)
+    if reversed_why:
+        raise DataError(reversed_why)
     if space == "position":
         return _position_comparison(rec, params, t, x, f, vel, sdx, w, min_exc, v_rest, v_noise, path, notes)
-    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
     inertia = params.inertia
-    longest = averaging_limit(t, path, min_exc)
     L = averaging_length(inertia, f_sd, v_noise, dt, w, len(t), longest)
     model_friction = simulate_displacement(params, t, path).friction_force
-    est = inertia_from_force(f, vel, t, L, v_rest)
-    L0 = averaging_length(0.0, f_sd, v_noise, dt, w, len(t), longest)
+    est = inertia_from_force(f, vel, t, L, v_rest) if L != L0 else reading0.estimate
     if (est is None or not est.usable) and L0 < L:
         # nothing usable at the L the file's inertia asks for (a held inertia several times the
         # machine's asks for a window too long to read I in): read at the shortest window
-        est = inertia_from_force(f, vel, t, L0, v_rest)
+        est = reading0.estimate
     if est is not None and est.usable and abs(est.value - inertia) > 3 * est.stderr:
         # a model-free regression can be misled (anything in the friction that follows the
         # acceleration enters I): the recording's value is used only if the model as given then
@@ -838,6 +847,9 @@ class InertiaReading(NamedTuple):
     estimate: InertiaEstimate | None
     why: str = ""
     no_inertial_term: bool = False
+    # both windows negative, within 10 % of each other and REVERSED_SIGMAS σ clear of 0: the
+    # force follows the acceleration as −I does, an applied force logged with the other sign
+    reversed: InertiaEstimate | None = None
 
 
 def inertia_from_force(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float) -> InertiaEstimate | None:
@@ -882,21 +894,48 @@ def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: fl
         y = uniform_filter1d(f, n_avg, mode="nearest")
         est[n_avg] = (solve(X, y, steady), steady)
     (I1, _), (I2, steady) = est.values()  # X, y: the longer window's, for the jackknife
+
+    def jackknife_sd() -> float:
+        # (least squares on the rows themselves: from the blocks' normal equations, whose cut of
+        # small singular values is coarser, σ moved by up to 40 % where a block holds most of a
+        # speed's samples)
+        block = np.minimum(rows * JACKKNIFE_BLOCKS // len(v), JACKKNIFE_BLOCKS - 1)
+        jk = np.array([solve(X, y, steady & (block != k)) for k in range(JACKKNIFE_BLOCKS)])
+        return math.sqrt((JACKKNIFE_BLOCKS - 1) / JACKKNIFE_BLOCKS * float(np.sum((jk - jk.mean()) ** 2)))
+
+    agree = abs(I1 - I2) <= 0.1 * abs(I2)
     if I1 <= 0 or I2 <= 0:
-        return InertiaReading(None, f"the force regressed on the acceleration gives no positive inertia ({I1:.3g} "
-                                    f"and {I2:.3g})", no_inertial_term=True)
-    if abs(I1 - I2) > 0.1 * I2:
+        why = f"the force regressed on the acceleration gives no positive inertia ({I1:.3g} and {I2:.3g})"
+        if I1 < 0 and I2 < 0 and agree:
+            # a measured friction read as the applied force has no inertial term: its readings
+            # scatter about 0; a force of the other sign reads −I, the same in both windows
+            sd = jackknife_sd()
+            if -I2 > REVERSED_SIGMAS * sd:
+                return InertiaReading(None, why, no_inertial_term=True, reversed=InertiaEstimate(I2, sd))
+        return InertiaReading(None, why, no_inertial_term=True)
+    if not agree:
         n1, n2 = est
         return InertiaReading(None, f"the force regressed on the acceleration reads {I1:.3g} over {n1}-sample means "
                                     f"and {I2:.3g} over {n2}-sample means, more than 10 % apart: something else "
                                     f"follows the acceleration, and neither reading is used")
-    # (least squares on the rows themselves: from the blocks' normal equations, whose cut of
-    # small singular values is coarser, σ moved by up to 40 % where a block holds most of a
-    # speed's samples)
-    block = np.minimum(rows * JACKKNIFE_BLOCKS // len(v), JACKKNIFE_BLOCKS - 1)
-    jk = np.array([solve(X, y, steady & (block != k)) for k in range(JACKKNIFE_BLOCKS)])
-    return InertiaReading(InertiaEstimate(I2, math.sqrt((JACKKNIFE_BLOCKS - 1) / JACKKNIFE_BLOCKS
-                                                        * float(np.sum((jk - jk.mean()) ** 2)))))
+    return InertiaReading(InertiaEstimate(I2, jackknife_sd()))
+
+
+REVERSED_SIGMAS = 5.0  # a negative inertia this many σ from 0 is a force of the other sign, not noise
+
+
+def reversed_force(rec: Recording, reading: InertiaReading) -> str | None:
+    """Why the applied force of ``rec`` has the other sign than eq. (8) takes (pushing the
+    position up), or None: the force regressed on the acceleration reads a negative inertia
+    (``InertiaReading.reversed``). Said, not mended: the fix is the user's, in one option."""
+    r = reading.reversed
+    if r is None:
+        return None
+    col = rec.columns.get("force", "force")
+    return (f"{rec.source}: the applied force {col!r} pushes the position down: regressed on the acceleration it reads "
+            f"an inertia of {r.value:.3g} ± {r.stderr:.2g}, which is negative (I·ẍ = f − F, eq. (8), takes a force "
+            f"pushing the way the position increases): negate the column in the file (or turn its sign with "
+            f"{columns_option('force', col, True)})")
 
 
 def mean_acceleration(v: np.ndarray, t: np.ndarray, L: int) -> np.ndarray:

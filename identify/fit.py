@@ -23,7 +23,7 @@ from scipy.stats import spearmanr
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
 from ..model.params import get_value, spec_of
 
-from .data import Recording
+from .data import Recording, columns_option
 from .errors import IdentificationError
 from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest, stribeck_plus_viscous
 from .mle import Gaussian, PreslidingData, fit_transition_curve
@@ -137,7 +137,8 @@ def sign_hint(prep: Prepared, levels: Levels) -> str:
         # convention is guessed for it (a vertical axis holds a weight both ways), so say it
         return (f"every steady run's applied force ({levels.opposing}) opposes its velocity, where sliding takes a "
                 f"force pushing the way it moves: the force column likely has the other sign (the model's applied "
-                f"force pushes the position up; negate the column in the file)")
+                f"force pushes the position up): negate the column in the file (or turn its sign with "
+                f"{columns_option('force', prep.rec.columns.get('force', '<column>'), True)})")
     taken = "reaction (flipped)" if prep.sign_flipped else "action"
     return (f"every steady run's friction ({levels.opposing}) opposes its velocity with the friction "
             f"taken as {taken}: the column likely has the other sign (--friction-sign auto detects it, or force "

@@ -731,3 +731,35 @@ def test_a_refined_curve_that_runs_off_is_declined():
     assert np.all(np.isfinite(p.transition_curve.F)) and max(p.transition_curve.F) < 10.0 * fs, p.transition_curve
     if not res.refinement["done"]:
         assert "kept the Markov and maximum-likelihood estimates" in res.refinement["reason"], res.refinement
+
+
+def test_an_applied_force_pushing_the_position_down_is_refused_by_fit_and_diagnose_and_turned_on_request(tmp_path):
+    # a voice-coil stage made apart (synth/voice_coil_stage.py) whose interferometer is mounted
+    # reversed: its force ramps still make presliding branches, so there is something to fit, and
+    # before, `fit` wrote the paper's robot joint's S(v) for a 50 mN contact and exited 0. The force
+    # regressed on the acceleration reads −m: the one-line refusal says so, and the option it
+    # names turns the sign and fits the simulator's own S(v)
+    from leuven_friction.identify.data import DataError, parse_column_mapping
+    from leuven_friction.identify.diagnose import diagnose
+    from synth.voice_coil_stage import FC, FS, M, session
+
+    columns, truth, _ = session("control", 601, log_rate=1000.0)
+    path = tmp_path / "stage.csv"
+    pd.DataFrame(columns).to_csv(path, index=False)
+    with pytest.raises(DataError) as e:
+        fit_recordings([load_recording(str(path))], refine=False)
+    msg = str(e.value)
+    assert "\n" not in msg and "'F_coil [mN]' pushes the position down" in msg, msg
+    assert "negate the column" in msg and '--columns "force=-F_coil [mN]"' in msg, msg
+    inertia = float(msg.split("inertia of ")[1].split(" ")[0])
+    assert -1.5 * M < inertia < -0.5 * M  # −m, read without any model
+    turned = load_recording(str(path), columns=parse_column_mapping("force=-F_coil [mN]"))
+    res = fit_recordings([turned], refine=False)
+    st = res.params.stribeck
+    # (the logged force's 1 mN offset shifts both sides the same way: their mean magnitude is the contact's)
+    for k, true in (("Fc", FC), ("Fs", FS)):
+        mean = 0.5 * (getattr(st.positive, k) - getattr(st.negative, k))
+        assert abs(mean - true) < 0.03 * true, (k, mean, true)
+    with pytest.raises(DataError) as e:
+        diagnose(load_recording(str(path)), res.params)
+    assert "pushes the position down" in str(e.value)

@@ -298,3 +298,20 @@ def test_a_row_written_twice_is_dropped_and_a_repeated_time_with_other_values_re
     p.write_text("\n".join(lines) + "\n")
     with pytest.raises(DataError, match=r"row 63: time .* does not increase"):
         load_recording(p)
+
+
+@pytest.mark.parametrize("given", ["-F_coil [mN]", "-F_coil", "- F_coil"])
+def test_a_column_named_with_a_leading_minus_is_taken_with_its_sign_turned(tmp_path, given):
+    # a sensor mounted the other way: `--columns force=-F_coil` turns the column's sign, with the
+    # header's unit still read; named as it is, the column keeps its sign
+    from leuven_friction.identify.data import parse_column_mapping
+
+    t, x, f = _signals()
+    path = tmp_path / "stage.csv"
+    path.write_text(_csv(["t [ms]", "x_interf [nm]", "F_coil [mN]"], (1e3 * t, 1e9 * x, 1e3 * f)))
+    turned = load_recording(str(path), columns=parse_column_mapping(f"force={given}"))
+    np.testing.assert_allclose(turned.force, -f, rtol=1e-12)
+    assert any("sign turned" in n and "F_coil [mN]" in n for n in turned.notes), turned.notes
+    kept = load_recording(str(path), columns=parse_column_mapping("force=F_coil"))
+    np.testing.assert_allclose(kept.force, f, rtol=1e-12)
+    assert not any("sign turned" in n for n in kept.notes)
