@@ -11,6 +11,7 @@ the header being line 1).
 from __future__ import annotations
 
 import io
+import math
 import re
 import warnings
 from dataclasses import dataclass, field
@@ -290,6 +291,11 @@ NO_COLUMN = "-"  # ``--columns velocity=-``: take no column for this signal, not
 NEGATED = "-"  # ``--columns force=-F_coil``: that column with its sign turned (a sensor mounted the other way)
 
 
+def _empty(cell) -> bool:
+    """A table cell that holds nothing (NaN as read, or blank text)."""
+    return cell is None or (isinstance(cell, float) and math.isnan(cell)) or not str(cell).strip()
+
+
 def columns_option(sig: str, col: str, negated: bool = False) -> str:
     """The ``--columns`` option that takes column ``col`` as signal ``sig`` (with its sign
     turned if ``negated``), quoted for a shell where the name has a space or a bracket."""
@@ -545,6 +551,19 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             f"name them with --columns {missing[0]}=<column>)"
         )
 
+    read_cols = [c for sig, c in mapping.items() if only is None or sig in only or sig in require]
+    if len(df) > 2 and read_cols:
+        last, before = df[read_cols].iloc[-1], df[read_cols].iloc[-2]
+        cut = [c for c in read_cols if _empty(last[c]) and not _empty(before[c])]
+        if cut:
+            # a last line short of cells where the line before has them: a log cut short while
+            # it was written (the logger stopped, a copy interrupted). That line is no sample; its
+            # last cell may be cut as well, so the whole line goes
+            notes.append(f"the last row (line {row_of(len(df) - 1)}) has no {', '.join(map(repr, cut))}, as a file cut "
+                         f"short while it was written ends: left out")
+            attrs = dict(df.attrs)
+            df = df.iloc[:-1]
+            df.attrs.update(attrs)
     rec = Recording(time=np.empty(0), source=str(path))
     unitless = []  # signals whose header gives no unit: SI assumed (``_assume_si``)
     for sig, col in mapping.items():

@@ -2398,15 +2398,24 @@ def held_stiffness(terms: list, settings: Settings) -> tuple:
     return tuple(out)
 
 
-def own_gain(engine: Engine, fit: FitResult) -> float:
-    """What the last effect of ``fit`` (a fit on the engine's scored samples, as the model
-    written is) does itself: 1 − its RMS gap over the gap with that effect's amplitudes at no
-    effect (``Effect.without``), everything else as fitted (the engine's nuisance solved
-    again). The base the engine holds must be the fit's own."""
-    *rest, last = fit.entries
-    off = rest + [{"name": last["name"], "params": EFFECTS[last["name"]].without(last["params"])}]
+def own_gain(engine: Engine, fit: FitResult, name: str | None = None) -> float:
+    """What effect ``name`` of ``fit`` (default: its last; a fit on the engine's scored
+    samples, as the model written is) does itself: 1 − its RMS gap over the gap with that
+    effect's amplitudes at no effect (``Effect.without``), everything else as fitted (the
+    engine's nuisance solved again). The base the engine holds must be the fit's own."""
+    name = fit.entries[-1]["name"] if name is None else name
+    off = [{"name": e["name"], "params": EFFECTS[e["name"]].without(e["params"])} if e["name"] == name else e
+           for e in fit.entries]
     without = fit_result(engine, fit.g, fit.k0, off, fit.u, engine.scored)
     return float(1.0 - math.sqrt(fit.rss / max(without.rss, 1e-300)))
+
+
+def without_term(terms: list, u: np.ndarray, name: str) -> tuple[list, np.ndarray]:
+    """A step's (terms, u) — u: log g, then each term's free parameters in order — without the
+    term of effect ``name``."""
+    i = next(k for k, t in enumerate(terms) if t.name == name)
+    start = 1 + sum(len(t.free) for t in terms[:i])
+    return terms[:i] + terms[i + 1:], np.delete(u, np.arange(start, start + len(terms[i].free)))
 
 
 def _effective_n(resid: np.ndarray) -> float:
@@ -3285,6 +3294,20 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     null = _fit(engine, prior_terms, np.concatenate([[math.log(base_refit.g), math.log(base_refit.k0)], refit_prior_u]),
                 allm, fit_k0=True, k0=1.0)
     k0 = null.k0
+    # the file's own effects, refitted here with the base: one that does next to nothing on this
+    # recording is said (a set diagnosed on another recording carries what this one may not show;
+    # nothing named, the model written is the file as given, its effect included)
+    made_from = sorted({os.path.basename(str(d)) for key in ("data", "diagnosed")
+                        for d in (params.provenance or {}).get(key, []) or []} - {os.path.basename(rec.source)})
+    for e in null.entries:
+        if e["name"] in HELD_STIFFNESS or e["name"] not in {t.name for t in prior_terms}:
+            continue
+        own = own_gain(engine, null, e["name"])
+        if own < PRESCREEN * s.min_gain:
+            cmp_.notes.append(f"the file's {e['name']} is not seen in this recording: refitted here "
+                              f"({format_values(e['name'], e['params'], params.units)}) it removes {max(own, 0.0):.1%} "
+                              f"of the gap left with it switched off, under {PRESCREEN * s.min_gain:.1%}"
+                              + (f"; the file was made from {', '.join(made_from)}" if made_from else ""))
     masks = [m & allm for m in fold_masks(n, s.folds, s.blocks_per_fold, cmp_.windows)]
     # the transitions: within twice the presliding range of a reversal (at rest or moving),
     # after the first significant reversal: before it the model runs on its virgin curve, a
@@ -3519,6 +3542,28 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         written.pop()
         rounds.pop()  # the model written is the step before's: so are its effects' σ
         engine.set_base(written[-1][1])
+    # an effect named before others that does next to nothing itself in the model written with them
+    # all: a later one took up what it stood in for (a voice-coil stage made apart: a softening named
+    # second, beside a ripple, stood in for part of a warm-up named third, and was written at
+    # h = −0.009 ± 0.08). It is not named, and the model written is refitted without it
+    while len(named) > 1:
+        owns = {nm: own_gain(engine, written[-1][0], nm) for nm in named[:-1]}
+        gone = min(owns, key=owns.get)
+        if owns[gone] >= PRESCREEN * s.min_gain:
+            break
+        k = named.index(gone)
+        later = named[k + 1:]
+        named.pop(k)
+        unused.append({"name": gone, "own_gain": owns[gone]})
+        cmp_.notes.append(f"{gone} is not named: in the model written with {', '.join(later)}, named after it, it "
+                          f"removes {max(owns[gone], 0.0):.1%} of the gap left with it switched off, under "
+                          f"{PRESCREEN * s.min_gain:.1%}: what it stood in for when it was named, "
+                          f"{' and '.join(later)} explain{'s' if len(later) == 1 else ''}; the model written is "
+                          f"refitted without it (the steps after it were decided with it in the model)")
+        del steps[2 + k], scored[2 + k], rounds[1 + k]
+        fits = [f if i < 1 + k else (*without_term(*f, gone),) for i, f in enumerate(fits) if i != 1 + k]
+        written = written_fits(engine, params.replace(effects=()), fits, refit_curve=refit_curve,
+                               start=alone.u if len(alone.u) else None)
     sds, decided = rounds[-1]
     if "time_drift" in s.candidates and len(holds) >= 4 and abs(order.rho) < SPEED_ORDER_RHO:
         span = float(cmp_.time[allm][-1] - cmp_.time[allm][0]) if allm.any() else 0.0

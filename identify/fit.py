@@ -736,6 +736,16 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not fit its levels
 
 
+def to_its_sd(value: float, sd: float) -> str:
+    """``value`` written to the digit its σ's second significant digit reaches (at least four
+    significant digits, at most ten), trailing zeros kept: 0.05400 ± 5.2e-06 is "0.0540003",
+    where a plain 4-digit form wrote "0.054", as if it were known to two digits."""
+    if not (math.isfinite(value) and math.isfinite(sd)) or sd <= 0 or value == 0:
+        return f"{value:.4g}"
+    digits = math.floor(math.log10(abs(value))) - math.floor(math.log10(sd)) + 2
+    return f"{value:#.{min(max(digits, 4), 10)}g}".rstrip(".")
+
+
 def dropped_knots(z: np.ndarray, drop: list, refit, notes: list, why: str):
     """The knots ``z`` without those at ``drop`` (the data do not determine them: ``why`` is
     noted) and the transition curve ``refit`` on the rest."""
@@ -864,7 +874,8 @@ def fit_report(res: FitResult) -> str:
         for side in ("positive", "negative"):
             val = getattr(getattr(res.params.stribeck, side), k)
             path = f"stribeck.{side}.{k}"
-            cells.append(f"{val:>12.4g} (held)   " if path in res.held else f"{val:>12.4g} ± {unc.get(path, float('nan')):<9.2g}")
+            cells.append(f"{val:>12.4g} (held)   " if path in res.held else
+                         f"{to_its_sd(val, unc.get(path, float('nan'))):>12s} ± {unc.get(path, float('nan')):<9.2g}")
         # the unit from the parameter schema, in the units of the data (N·m or N, rad/s or m/s, …)
         lines.append(f"    {k:10s} {cells[0]} {cells[1]}   {spec_of(res.params, f'stribeck.positive.{k}').unit}")
     corr_lines = []
@@ -886,7 +897,7 @@ def fit_report(res: FitResult) -> str:
         lines.append(f"    {'z (' + zu + ')':>12s} {'F_d(z) (' + Fu + ')':>12s}")
         for i, (z, F) in enumerate(zip(res.params.transition_curve.z, res.params.transition_curve.F)):
             err = f" ± {unc.get(f'transition_curve.F.{i}', float('nan')):.2g}" if i else "   (fixed)"
-            lines.append(f"    {z:>12.4g} {F:>12.5g}{err}")
+            lines.append(f"    {z:>12.4g} {to_its_sd(F, unc.get(f'transition_curve.F.{i}', float('nan'))) if i else '0':>12s}{err}")
         lines.append(f"    n = {res.params.n:g}" + (f" ± {unc['n']:.2g}" if "n" in unc else " (held)"))
     if "sigma1" in unc:
         lines.append("[[Micro-viscous damping σ1, eq. (3) — from the output-error refinement]]")

@@ -763,3 +763,14 @@ def test_an_applied_force_pushing_the_position_down_is_refused_by_fit_and_diagno
     with pytest.raises(DataError) as e:
         diagnose(load_recording(str(path)), res.params)
     assert "pushes the position down" in str(e.value)
+
+
+def test_a_value_is_written_to_the_digits_its_sigma_reaches():
+    # "Fs 0.054 ± 5.2e-06": a value known to 10⁻⁵ read as two significant figures
+    from leuven_friction.identify.fit import to_its_sd
+
+    assert to_its_sd(0.054, 5.2e-6) == "0.0540000"  # σ's second digit is the 10⁻⁷ place
+    assert to_its_sd(-0.0005, 2.5e-7) == "-0.00050000"
+    assert to_its_sd(17.88, 0.0087) == "17.8800"
+    assert to_its_sd(12345.6, 30.0) == "12346"  # never fewer than four significant digits
+    assert to_its_sd(36.0, 1.0) == "36.00"

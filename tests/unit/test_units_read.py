@@ -66,6 +66,23 @@ def test_an_empty_cell_is_named_by_column_and_row():
     assert "\n" not in msg
 
 
+def test_a_last_line_cut_short_is_left_out_and_said_and_an_empty_cell_before_it_still_refused():
+    # a log whose writing stopped inside its last line ('31343.9982,-381'): that line is no
+    # sample (its last cell may be cut too); before, "row 155892: is empty or NaN" was all
+    t, x, f = _signals(50)
+    text = _csv(["time [s]", "position [m]", "force [N]"], [t, x, f])
+    cut = text[: text.rstrip("\n").rindex(",")]  # the last line without its last cell
+    rec = load_recording(cut, name="cut.csv")
+    assert len(rec.time) == 49 and rec.time[-1] == t[-2]
+    assert any("last row (line 51)" in n and "'force [N]'" in n and "cut short" in n for n in rec.notes), rec.notes
+    # the same cell empty one line earlier is a hole in the log, not its end
+    lines = text.splitlines()
+    lines[-2] = lines[-2][: lines[-2].rindex(",") + 1]
+    with pytest.raises(DataError) as e:
+        load_recording("\n".join(lines) + "\n", name="hole.csv")
+    assert "row 50" in str(e.value) and "empty" in str(e.value)
+
+
 @pytest.mark.parametrize("units,field", [
     ({"position": "mm", "force": "N", "time": "s"}, "units.position"),
     ({"position": "in", "force": "lbf", "time": "s"}, "units.position"),
