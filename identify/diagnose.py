@@ -3729,12 +3729,22 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             prov["held"] = {**{k: v for k, v in (prov.get("held") or {}).items()
                                if not any(k.startswith(f"stribeck.{sd}.") for sd in final_reid.sides)},
                             **final_reid.held}
+        # n and σ1 where the refit left them at an end of its range: a bound the record pushed them
+        # to, not an estimate (no σ is written for either)
+        ends = ({"n": (final_base.n, N_REFIT, f"{N_REFIT[0]:g}–{N_REFIT[1]:g}"),
+                 "sigma1": (final_base.sigma1, s1_ends, f"a factor {SIGMA1_REFIT_MAX:g} either way from the file's")}
+                if params.model == "leuven" else {})
+        at_end = {k: (f"at the end of the diagnosis's refit range ({said}): the record pushes it further (the "
+                      f"contact's shape, not the data's noise), so the value written is a bound, not an estimate")
+                  for k, (v, rng, said) in ends.items() if _at_range_end(v, rng)}
+        if at_end:
+            prov["held"] = {**(prov.get("held") or {}), **at_end}
         held = [e["name"] for e in final.entries if e["name"] not in named]
         prov["diagnosis"] = ((f"{', '.join(named)} added (blocked cross-validation)" if named else
                               "nothing named; the base refitted alone (--refit-base)")
                              + (f", {', '.join(held)} held with them" if held else "") + f"; level ×{final.g:.4g}, "
                              f"presliding stiffness ×{final.k0:.4g}, n {params.n:.3g} → {final_base.n:.3g}, "
-                             f"σ1 {params.sigma1:.3g} → {final_base.sigma1:.3g}, "
+                             f"σ1 {params.sigma1:.3g} → {written_params.sigma1:.3g}, "
                              + (f"S(v) identified anew from the steady sliding ({', '.join(final_reid.sides)}), then "
                                 if reidentified else "")
                              + "the S(v) levels"

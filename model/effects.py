@@ -224,8 +224,17 @@ class Effect:
         sd = sd or {}
         amplitudes = {a for p in self.params for a in p.shape_of}
         weak = {a: why for a in amplitudes if (why := self.amplitude_not_shown(a, values, sd))}
-        return {p.name: "; ".join(weak[a] for a in p.shape_of) for p in self.params
-                if p.shape_of and all(a in weak for a in p.shape_of)}
+        out = {p.name: "; ".join(weak[a] for a in p.shape_of) for p in self.params
+               if p.shape_of and all(a in weak for a in p.shape_of)}
+        # a scale (a drift's τ, a softening's n_c, a ripple's λ: positive, ``lo_open`` at 0) whose σ
+        # exceeds it: the change is shown, not how fast it comes or how long it is (a warm-up
+        # written "τ = 25.9 ± 71 s" where the decision had read 92.7)
+        for p in self.params:
+            x, s = values.get(p.name), sd.get(p.name)
+            if (p.shape_of and p.lo == 0.0 and p.lo_open and p.name not in out and x is not None and s is not None
+                    and math.isfinite(s) and s > abs(x)):
+                out[p.name] = f"{p.name} = {x:.3g} ± {s:.2g}: its σ exceeds it"
+        return out
 
     def amplitude_not_shown(self, name: str, values: Mapping[str, float], sd: Mapping[str, float]) -> str | None:
         """Why the amplitude ``name`` is not told from its neutral value, or None. A signed

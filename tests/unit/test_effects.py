@@ -283,6 +283,11 @@ def test_a_shape_whose_amplitude_is_within_two_sigma_of_none_is_said_not_determi
     assert set(EFFECTS["time_drift"].undetermined(drift, {"b": 0.02, "tau": 50.0})) == {"tau"}
     assert set(EFFECTS["time_drift"].undetermined({**drift, "b": -0.03}, {"b": 0.02, "tau": 50.0})) == {"tau"}
     assert EFFECTS["time_drift"].undetermined({**drift, "b": 0.1}, {"b": 0.02, "tau": 5.0}) == {}
+    # … and a drift shown (b = −0.218 ± 0.045) whose τ of 25.9 s has a σ of 71 s: how fast it comes
+    # is not shown; with a σ of 20 s it is
+    warm = {"b": -0.218, "tau": 25.9, "t0": 4.7}
+    assert set(EFFECTS["time_drift"].undetermined(warm, {"b": 0.045, "tau": 71.0})) == {"tau"}
+    assert EFFECTS["time_drift"].undetermined(warm, {"b": 0.045, "tau": 20.0}) == {}
     # a softening's sign does not matter: h = −0.3 ± 0.05 is 6 σ from none
     assert EFFECTS["cyclic_softening"].undetermined({"h": -0.3, "n_c": 9.0, "min_excursion": 1e-6},
                                                      {"h": 0.05, "n_c": 2.0}) == {}

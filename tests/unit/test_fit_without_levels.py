@@ -360,3 +360,28 @@ def test_a_diagnosis_without_a_load_lists_the_columns_it_did_not_read(fits):
     d = diagnose(rec, fits[0].params)
     said = [n for n in d.notes if n.startswith("columns not read as any signal")]
     assert said and "strain [V]" in said[0] and "--columns normal_load=<column>" in said[0], d.notes
+
+
+def test_an_effect_of_the_file_that_this_recording_does_not_show_is_said():
+    # a parameter file diagnosed on another recording carries a ripple of 13 %; the crank shows
+    # none: refitted here it does next to nothing, and the note says so and which file it came from
+    # (nothing named, the model written is the file as given, its ripple included)
+    from leuven_friction.identify.diagnose import diagnose
+
+    df, _ = crank_recording(1, duration=8.0, rate=200.0)
+    rec = load_recording(df.to_csv(index=False).encode(), name="short_crank.csv")
+    fitted = fit_recordings([rec]).params
+    span = float(np.ptp(rec.position))
+    ripple = {"name": "position_ripple", "params": {"x0": 0.0, "wavelength": span / 3.7, "a": 0.13, "phase": 0.4,
+                                                    "a2": 0.0, "phase2": 0.0}}
+    given = fitted.replace(effects=(ripple,), provenance={**dict(fitted.provenance), "data": ["other_stage.csv"]})
+    d = diagnose(rec, given)
+    said = [n for n in d.notes if n.startswith("the file's position_ripple is not seen in this recording")]
+    assert said and "the file was made from other_stage.csv" in said[0], d.notes
+    assert d.effects == []
+    # a drift the file carries, on a crank that drifts that way: it is seen, and nothing is said
+    df, truth = crank_recording(1, "time_drift", duration=8.0, rate=200.0)
+    rec = load_recording(df.to_csv(index=False).encode(), name="drifting_crank.csv")
+    drift = {"name": "time_drift", "params": {"t0": 0.0, "b": truth["b"], "tau": truth["tau"]}}
+    d = diagnose(rec, fitted.replace(effects=(drift,)))
+    assert not [n for n in d.notes if "is not seen in this recording" in n], d.notes
