@@ -738,7 +738,7 @@ MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not f
 
 def to_its_sd(value: float, sd: float) -> str:
     """``value`` written to the digit its σ's second significant digit reaches (at least four
-    significant digits, at most ten), trailing zeros kept: 0.05400 ± 5.2e-06 is "0.0540003",
+    significant digits, at most ten), trailing zeros kept: 0.054 ± 5.2e-06 is "0.0540000",
     where a plain 4-digit form wrote "0.054", as if it were known to two digits."""
     if not (math.isfinite(value) and math.isfinite(sd)) or sd <= 0 or value == 0:
         return f"{value:.4g}"
