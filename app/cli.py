@@ -14,6 +14,11 @@ class UserError(FrictionError):
     """A mistake in the command line itself: printed as one line, exit status 2."""
 
 
+# one text for every command that reads a recording (the mapping itself: ``identify.data.parse_column_mapping``)
+COLUMNS_HELP = ("column mapping, e.g. time=t,position=q,{example}; force=-F takes column F with its sign "
+                "turned; velocity=- takes no column for a signal")
+
+
 def _params(path: str | None, model: str | None):
     from ..identify.paramfile import load_params
     from ..model import as_model, default_params
@@ -478,14 +483,14 @@ def build_parser() -> argparse.ArgumentParser:
                    help="drive along the logged position smoothed as `diagnose` compares it (encoder steps and "
                         "sensor noise are measurement, not motion; the output's position column is that path); "
                         "default: the position as logged")
-    s.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau; velocity=- takes no column for a signal")
+    s.add_argument("--columns", help=COLUMNS_HELP.format(example="force=tau"))
     s.add_argument("--out", help="output table: CSV, or Parquet for a .parquet name")
     s.set_defaults(func=cmd_simulate)
 
     f = sub.add_parser("fit", help="fit S(v) and the transition curve to recorded CSV data", **reads_files)
     f.add_argument("data", nargs="+", help="recorded CSV/TSV files (or sample:NAME for a shipped one, see `samples`)")
     f.add_argument("--out", required=True, help="parameter YAML to write")
-    f.add_argument("--columns", help="column mapping, e.g. time=t,position=q,force=tau; velocity=- takes no column for a signal")
+    f.add_argument("--columns", help=COLUMNS_HELP.format(example="force=tau"))
     f.add_argument("--params", help="starting/default parameters for what the data cannot determine")
     f.add_argument("--n", default="7", help="exponent n of eq. (5) (default 7, as the paper)")
     f.add_argument("--fit-n", action="store_true", help="estimate n as well")
@@ -501,7 +506,7 @@ def build_parser() -> argparse.ArgumentParser:
     d = sub.add_parser("diagnose", help="find the physical effect the model misses, add it, show the gap shrink", **reads_files)
     d.add_argument("data", help="recorded CSV/TSV (time, position, and friction or applied force), or sample:NAME")
     d.add_argument("--params", help="current model (default: fit the base model to the data first)")
-    d.add_argument("--columns", help="column mapping, e.g. time=t,position=q,friction=F; velocity=- takes no column for a signal")
+    d.add_argument("--columns", help=COLUMNS_HELP.format(example="friction=F"))
     d.add_argument("--json", help="write the result (effects named, gap per step, regimes, candidates with their "
                                   "cross-validation evidence, confounded pairs) as JSON")
     d.add_argument("--html", help="write a self-contained HTML report")

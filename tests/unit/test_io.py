@@ -453,6 +453,8 @@ def test_help_of_a_command_that_reads_a_recording_says_how_columns_and_units_are
         main(["fit", "--help"])
     out = capsys.readouterr().out
     assert "friction_torque" in out and "'pos [mm]'" in out and "lbf" in out and "q_ref" in out
+    # the sign-turning form of the mapping, which the sign hints of `fit` point to
+    assert "force=-F takes column F with its sign turned" in " ".join(out.split())
 
 
 def test_a_grid_finer_than_the_noise_is_the_files_digits_not_an_encoder(tmp_path):
