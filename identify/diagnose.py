@@ -105,6 +105,7 @@ class Settings:
     blocks_per_fold: int = 20
     min_gain: float = 0.03  # pooled held-out RMS must fall by this fraction
     confound_corr: float = 0.7  # corrections this alike explain the same residual
+    tell_apart: bool = True  # two alike candidates are each judged beside the other before they are called confounded
     clear_margin: float = 0.25  # the better of two alike candidates must gain this much more (relative)
     max_effects: int = 3
     free_steady: bool = True  # the alternative holds a free correction to S(v) (FreeSteadyCurve)
@@ -3462,6 +3463,48 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 continue
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         cands_out = [e.as_dict(s) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
+
+        def beside(o: Evidence) -> Alternative | None:
+            """The alternative ``o`` was judged against with ``o`` added as it was fitted, refitted
+            (None for one refitting κ0, a stiffness candidate's)."""
+            if o.against is None or o.against.fit_k0:
+                return None
+            terms = o.against.terms + [_terms_for(o.name, cmp_, strokes, o.params.get("min_excursion"))]
+            fr = _fit(engine, terms, o.fit.u, allm, fit_k0=False, k0=o.fit.k0)
+            return Alternative(fr, terms, fr.u[1:])
+
+        def told_apart(e: Evidence, o: Evidence) -> str | None:
+            """Of two alike candidates (``_corr`` over ``confound_corr``, neither clearly better):
+            each judged beside the other as fitted. The one that still passes beside the other,
+            where the other no longer gains held out beside it, shows a part of the residual of
+            its own ("e" or "o": a load with steps on a rising schedule, which a drift in time
+            follows everywhere but at the steps); "both" where each passes beside the other (two
+            effects); None where neither does (confounded, as a load that rises as a drift would).
+            Said in the notes either way."""
+            alt_o, alt_e = beside(o), beside(e)
+            if alt_o is None or alt_e is None:
+                return None
+            say(0.1 + 0.8 * (step + 0.95) / s.max_effects, f"step {step + 1}: {e.name} and {o.name}, each beside the other")
+            ev_e, ev_o = judge(e.name, alt_o), judge(o.name, alt_e)
+            engine.following_held(None)
+            ok = {"e": ev_e is not None and ev_e.passes(s), "o": ev_o is not None and ev_o.passes(s)}
+            gains = {"e": ev_e is not None and ev_e.gains_held_out(s), "o": ev_o is not None and ev_o.gains_held_out(s)}
+            which = ("both" if ok["e"] and ok["o"] else "e" if ok["e"] and not gains["o"]
+                     else "o" if ok["o"] and not gains["e"] else None)
+
+            def said(ev: Evidence | None, a: Evidence, b: Evidence) -> str:
+                if ev is None or not ev.cross_validated:
+                    return f"{a.name} beside {b.name} gains under the bar in-sample"
+                return (f"{a.name} beside {b.name} gains {ev.heldout_gain:.1%} held out (folds "
+                        f"{ev.folds_improved}/{ev.folds_informative})")
+            outcome = {"both": "each shows a part of its own", "e": f"{e.name} shows a part of its own",
+                       "o": f"{o.name} shows a part of its own", None: "neither shows a part of its own: confounded"}[which]
+            cmp_.notes.append(f"{e.name} and {o.name} explain much the same part (correlation of their corrections "
+                              f"{_corr(e.correction, o.correction):.2f}, held-out gains {e.heldout_gain:.1%} and "
+                              f"{o.heldout_gain:.1%}); each fitted beside the other: {said(ev_e, e, o)}, "
+                              f"{said(ev_o, o, e)} — {outcome}")
+            return which
+
         winner = None
         blocked = set()
         for e in passing:
@@ -3472,7 +3515,17 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 if o is e or o.name in blocked:
                     continue
                 if _corr(e.correction, o.correction) >= s.confound_corr and not _clearly_better(e, o, s):
-                    rivals.append(o)
+                    which = told_apart(e, o) if s.tell_apart else None
+                    if which == "e":
+                        blocked.add(o.name)  # it gains nothing beside e
+                    elif which == "o":
+                        rivals = None  # e gains nothing beside o: o is looked at in its turn
+                        blocked.add(e.name)
+                        break
+                    elif which is None:
+                        rivals.append(o)
+            if rivals is None:
+                continue
             if rivals:
                 for o in rivals:
                     confounded.append(_confounding(e, o, s))
@@ -3810,7 +3863,7 @@ def steady_stribeck(params: FrictionParams, cmp_: Comparison, factor: np.ndarray
     Markov levels averaged over a load or a temperature (F_s held at F_c, σ2 held at 0) leaves
     the model written several noise floors in sliding that no refit of the levels within a factor
     1.5 can take up. None where no side has levels."""
-    from .markov import NAMES, fit_side_honest
+    from .markov import NAMES, fit_side_honest, fit_sides_honest
 
     if params.model != "leuven" or cmp_.space != "friction":
         return None
@@ -3820,11 +3873,15 @@ def steady_stribeck(params: FrictionParams, cmp_: Comparison, factor: np.ndarray
         return None
     sides, gap_file, gap_new, anew, held = [], 0.0, 0.0, [], {}
     both = {"positive": params.stribeck.positive, "negative": params.stribeck.negative}
+    try:
+        decisions = fit_sides_honest(levels)  # (a side short of levels takes δ from the other)
+    except IdentificationError:
+        decisions = {}
     for name, sign in (("positive", 1), ("negative", -1)):
         old = getattr(params.stribeck, name)
         m = levels.velocity * sign > 0
         try:
-            dec = fit_side_honest(levels, sign) if m.any() else None
+            dec = (decisions.get(name) or fit_side_honest(levels, sign)) if m.any() else None
         except IdentificationError:
             dec = None
         if dec is None or dec.fit is None:

@@ -25,7 +25,7 @@ from ..model.params import get_value, spec_of
 
 from .data import Recording, columns_option
 from .errors import IdentificationError
-from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_side_honest, stribeck_plus_viscous
+from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, stribeck_plus_viscous
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, constant_velocity_levels, crossing_range,
                       crossings, force_branches, motion_branches, noise_sd, prepare, sliding_levels)
@@ -449,7 +449,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 
     # --- S(v): Markov estimator per side, honest about what the levels determine ------------
     say(0.2, f"Markov estimator on {len(levels.velocity)} levels")
-    decisions = {side: fit_side_honest(levels, sign) for side, sign in (("positive", 1), ("negative", -1))}
+    decisions = fit_sides_honest(levels)
     sides = {}
     for side, sign in (("positive", 1), ("negative", -1)):
         dec = decisions[side]

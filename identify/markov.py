@@ -218,7 +218,7 @@ class SideDecision:
 
     fit: SideFit | None
     held: dict  # name -> reason
-    model: str  # "Stribeck + viscous", "Stribeck + viscous (δ held)", "Coulomb + viscous", "Coulomb", "held"
+    model: str  # "Stribeck + viscous", "Stribeck + viscous (δ held)" (or "(δ from the … side)"), "Coulomb + viscous", "Coulomb", "held"
 
 
 def _trouble(fit: SideFit, names) -> list:
@@ -234,19 +234,20 @@ def _trouble(fit: SideFit, names) -> list:
 DELTA_RANGE = (0.5, 2.0)  # δ of eq. (7) as contacts show it (Table I: 0.5 and 0.9; a Gaussian Stribeck curve: 2)
 
 
-def with_delta_spread(fit: SideFit, levels: Levels, sign: int) -> SideFit:
+def with_delta_spread(fit: SideFit, levels: Levels, sign: int, delta_range: tuple = DELTA_RANGE) -> SideFit:
     """A fit with δ held, its σ widened by how far each estimate moves when δ is held
-    anywhere in ``DELTA_RANGE`` instead (half the spread, in quadrature): δ is held because
-    the levels do not determine it, so an error bar conditional on the one value chosen would
-    claim what the data do not say. (On an independent robot joint whose slow holds stick and
-    slip, F_s came out 13.1 ± 0.33 with δ held at 1 for a contact's 9.98.)"""
-    others = [fit_side(levels, sign, hold={"delta": d}) for d in DELTA_RANGE]
+    anywhere in ``delta_range`` (default ``DELTA_RANGE``) instead (half the spread, in
+    quadrature): δ is held because the levels do not determine it, so an error bar conditional
+    on the one value chosen would claim what the data do not say. (On an independent robot
+    joint whose slow holds stick and slip, F_s came out 13.1 ± 0.33 with δ held at 1 for a
+    contact's 9.98.)"""
+    others = [fit_side(levels, sign, hold={"delta": d}) for d in delta_range]
     stderr = dict(fit.stderr)
     for k in ("Fs", "Fc", "vs", "sigma2"):
         vals = [fit.values[k]] + [f.values[k] for f in others]
         stderr[k] = float(np.hypot(fit.stderr[k], 0.5 * (max(vals) - min(vals))))
     notes = fit.notes + [f"σ of Fs, Fc, vs and σ2 include how far they move with δ held anywhere in "
-                         f"{DELTA_RANGE[0]:g}–{DELTA_RANGE[1]:g} (δ is not determined by the levels)"]
+                         f"{delta_range[0]:.3g}–{delta_range[1]:.3g} (δ is not determined by the levels)"]
     return SideFit(fit.values, stderr, fit.correlation, fit.chi2, fit.dof, fit.names, notes)
 
 
@@ -343,6 +344,40 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
     held = {"Fs": f"{why}: held at Fc", "vs": f"{why}: held at the slowest level's speed",
             "delta": f"{why}: held at {delta_hold:g}", "sigma2": f"{why}; the levels do not span enough speeds: held at 0"}
     return SideDecision(fit, held, "Coulomb")
+
+
+def fit_sides_honest(levels: Levels) -> dict:
+    """``fit_side_honest`` on both sides ({"positive": SideDecision, "negative": …}), where a
+    side one level short of the Stribeck form's STRIBECK_MIN_LEVELS (at STRIBECK_MIN_SPEEDS or
+    more speeds) takes δ from the other side, where that side determined it: with δ held, eq.
+    (7) + σ2·v has four parameters, which five levels over-determine. The shape of the Stribeck
+    dip is the contact's, so it is held at the other side's value, and the σ of the rest are
+    widened by how far they move with δ anywhere within that value's ±σ
+    (``with_delta_spread``). Kept only where the fit determines F_s, F_c, v_s and σ2 and two
+    levels lie below v_s, as ``fit_side_honest`` asks of its own δ-held fit; else that side's
+    own decision stands. (A tendon-driven joint made apart, swept both ways, showed a slow
+    sine's tops as two more positive levels: the negative side, five levels with a clear dip,
+    went to Coulomb + viscous with χ² 5,190 for 4 degrees of freedom and F_c 9.85 mN·m for
+    8.6, where δ from the positive side fits them with χ² 0.19.)"""
+    out = {side: fit_side_honest(levels, sign) for side, sign in (("positive", 1), ("negative", -1))}
+    for side, sign in (("positive", 1), ("negative", -1)):
+        other = out["negative" if sign > 0 else "positive"]
+        m = levels.velocity * sign > 0
+        a = np.abs(levels.velocity[m])
+        if (out[side].model.startswith("Stribeck") or other.model != "Stribeck + viscous"
+                or len(a) != STRIBECK_MIN_LEVELS - 1 or distinct_speeds(a) < STRIBECK_MIN_SPEEDS):
+            continue
+        d, sd = other.fit.values["delta"], other.fit.stderr["delta"]
+        fit = with_delta_spread(fit_side(levels, sign, hold={"delta": d}), levels, sign,
+                                (max(d - sd, 1e-3), d + sd))
+        if _trouble(fit, ("Fs", "Fc", "vs", "sigma2")) or int(np.sum(a < abs(fit.values["vs"]))) < 2:
+            continue
+        word = "negative" if sign > 0 else "positive"
+        out[side] = SideDecision(fit, {"delta": (f"{len(a)} levels on this side do not determine it beside F_s, F_c, v_s "
+                                                 f"and σ2: held at the {word} side's {d:.3g} ± {sd:.2g}, identified there "
+                                                 f"(the σ of the rest include that ±σ)")},
+                                 f"Stribeck + viscous (δ from the {word} side)")
+    return out
 
 
 def _coulomb_viscous(levels: Levels, sign: int, viscous: bool) -> SideFit:

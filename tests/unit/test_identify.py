@@ -303,3 +303,51 @@ def test_a_knot_named_beyond_the_branches_changes_no_prediction_motion_or_force_
         inside = fit.F.copy()
         inside[first - 1:] += 0.3 * (fit.F[first - 1] - fit.F[first - 2])
         assert any(not np.allclose(a, b, rtol=0, atol=1e-12) for a, b in zip(base, preds(inside)))
+
+
+def _lorentzian_levels(v, rng, sd=1.5e-5):
+    # S(v) of another shape than eq. (7)'s: F_c + (F_s − F_c)/(1 + (v/v_s)²) + σ2·v (a tendon
+    # joint's 11 and 8 mN·m, v_s 0.1 rad/s), sign with v
+    a = np.abs(v)
+    F = np.sign(v) * (8e-3 + 3e-3 / (1.0 + (a / 0.1) ** 2) + 2e-3 * a)
+    return F + rng.normal(0, sd, len(v)), np.full(len(v), sd**2)
+
+
+def test_a_side_one_level_short_takes_delta_from_the_other_and_follows_its_dip():
+    # eight positive levels determine δ; five negative ones (one short of the Stribeck form) with
+    # the same dip: held at the positive side's δ, the rest fitted, the dip followed within the
+    # noise — where Coulomb + viscous misfits them by hundreds of χ² (a tendon joint made apart)
+    from leuven_friction.identify.markov import fit_side_honest, fit_sides_honest, stribeck_plus_viscous
+
+    rng = np.random.default_rng(3)
+    v = np.concatenate([np.geomspace(0.02, 0.6, 8), -np.array([0.03, 0.06, 0.12, 0.25, 0.5])])
+    F, var = _lorentzian_levels(v, rng)
+    levels = Levels(v, F, var, np.full(len(v), 2000.0))
+    alone = fit_side_honest(levels, -1)
+    assert alone.model == "Coulomb + viscous" and alone.fit.chi2 > 100 * alone.fit.dof
+    dec = fit_sides_honest(levels)
+    neg, pos = dec["negative"], dec["positive"]
+    assert neg.model == "Stribeck + viscous (δ from the positive side)" and set(neg.held) == {"delta"}
+    assert neg.fit.values["delta"] == pos.fit.values["delta"] and "positive side's" in neg.held["delta"]
+    assert neg.fit.chi2 < 10.0 * max(neg.fit.dof, 1)
+    # the curve between the levels, against the true one (not eq. (7)'s shape): within 2 %
+    vv = -np.geomspace(0.03, 0.5, 20)
+    true = -(8e-3 + 3e-3 / (1.0 + (vv / 0.1) ** 2) - 2e-3 * vv)
+    got = stribeck_plus_viscous([neg.fit.values[k] for k in NAMES], vv)
+    assert np.max(np.abs(got / true - 1.0)) < 0.02
+
+
+def test_a_side_one_level_short_without_a_dip_keeps_its_own_decision():
+    # the same count of negative levels on a flat Coulomb + viscous line: δ from the other side
+    # cannot place a dip that is not there (v_s undetermined), so the side stays Coulomb + viscous
+    from leuven_friction.identify.markov import fit_sides_honest
+
+    rng = np.random.default_rng(4)
+    vp = np.geomspace(0.02, 0.6, 8)
+    Fp, varp = _lorentzian_levels(vp, rng)
+    vn = -np.array([0.03, 0.06, 0.12, 0.25, 0.5])
+    Fn = -(8e-3 - 2e-3 * vn) + rng.normal(0, 1.5e-5, len(vn))
+    levels = Levels(np.r_[vp, vn], np.r_[Fp, Fn], np.r_[varp, np.full(5, 1.5e-5**2)], np.full(13, 2000.0))
+    dec = fit_sides_honest(levels)
+    assert dec["positive"].model == "Stribeck + viscous" and dec["negative"].model == "Coulomb + viscous"
+    assert abs(dec["negative"].fit.values["Fc"] + 8e-3) < 5 * dec["negative"].fit.stderr["Fc"]
