@@ -141,11 +141,16 @@ COUNTS = ("count", "counts", "cts", "ct", "inc", "incs", "increments", "pulses",
 CURRENTS = ("a", "ma", "amp", "amps", "ampere", "amperes")  # a motor current, which is no force until scaled
 
 
-def _current_fix(name: str) -> str:
-    """What to write for a column ``name`` logged as a motor current: the torque (or force)
-    constant as its unit."""
+def _current_fix(name: str, unit: str) -> str:
+    """What to write for a column ``name`` logged as a motor current in ``unit`` (one of
+    CURRENTS): the torque (or force) constant per that unit as its unit. (In mA the constant
+    per mA is a thousandth of the N·m/A a data sheet gives: '[0.05 N*m]' over a current in mA
+    reads a thousand times the torque, which nothing downstream can tell.)"""
+    milli = unit.strip().lower() == "ma"
+    rotary, linear = ("0.12 mN*m", "35 mN") if milli else ("0.12 N*m", "35 N")
     return (f"a motor current is no force: the torque is the motor's torque constant times it; write that constant "
-            f"as its unit, e.g. '{name} [0.12 N*m]' for 0.12 N·m/A (a linear motor: '{name} [35 N]' for 35 N/A)")
+            f"per {'mA' if milli else 'A'} as its unit, e.g. '{name} [{rotary}]' for 0.12 N·m/A (a linear motor: "
+            f"'{name} [{linear}]' for 35 N/A)")
 
 
 def _counts_fix(name: str) -> str:
@@ -223,11 +228,11 @@ class Recording:
         could = [f"{', '.join(self.ambiguous[s])} could each be {s}" for s in signals if s in self.ambiguous]
         if could:
             return "; ".join(could)
-        currents = [(c, key) for c in self.ignored for key, unit in [_split_header(c)]
+        currents = [(c, key, unit) for c in self.ignored for key, unit in [_split_header(c)]
                     if (unit or "").strip().lower() in CURRENTS]
         if currents and {"force", "friction"} & set(signals):
-            col, key = currents[0]
-            return f"column {col!r} is in amperes: {_current_fix(key)}"
+            col, key, unit = currents[0]
+            return f"column {col!r} is a current ({unit}): {_current_fix(key, unit)}"
         return f"none of {_listing(self.ignored)} was recognised as one" if self.ignored else ""
 
     def __len__(self) -> int:
@@ -610,7 +615,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                     raise DataError(f"{path}: column {col!r}: unit {unit!r} counts steps without saying their size: "
                                     f"{_counts_fix(headers[col][0])}")
                 if unit.strip().lower() in CURRENTS and sig in ("force", "friction"):
-                    raise DataError(f"{path}: column {col!r}: unit {unit!r}: {_current_fix(headers[col][0])}")
+                    raise DataError(f"{path}: column {col!r}: unit {unit!r}: {_current_fix(headers[col][0], unit)}")
                 raise DataError(f"{path}: column {col!r}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
             factor, si = unit_of(unit, sig)
             if si not in SI_OF[sig]:

@@ -154,6 +154,15 @@ def test_a_motor_current_is_refused_saying_to_write_the_torque_constant_as_its_u
     p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [0.12 N*m]"], [t, x, f]))
     rec = load_recording(p, columns={"force": "motor_current [0.12 N*m]"})
     assert rec.units["force"] == "N*m" and np.allclose(rec.force, 0.12 * f)
+    # in mA the constant to write is per mA: the example a thousandth of the N·m/A (a header of
+    # '[0.05 N*m]' over mA, as the example for amperes read, wrote a thousand times the torque)
+    p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [mA]"], [t, x, 1e3 * f]))
+    with pytest.raises(DataError) as named:
+        load_recording(p, columns={"force": "motor_current"})
+    assert "per mA" in str(named.value) and "motor_current [0.12 mN*m]' for 0.12 N·m/A" in str(named.value), named.value
+    p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [0.12 mN*m]"], [t, x, 1e3 * f]))
+    rec = load_recording(p, columns={"force": "motor_current"})
+    assert rec.units["force"] == "N*m" and np.allclose(rec.force, 0.12 * f)
 
 
 @pytest.mark.parametrize("start,fmt", [("2026-11-29 23:59:59.5", "%Y-%m-%d %H:%M:%S.%f"),
