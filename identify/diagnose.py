@@ -1802,6 +1802,27 @@ def _at_range_end(x: float, ends) -> bool:
     return x > 0 and bool(ends) and min(abs(math.log(x / e)) for e in ends) < 0.01
 
 
+def unresolved_curve(written: FrictionParams, cp: ComparedPath, k0: float, unit: str = "") -> str | None:
+    """Why the transition curve ``written`` (its z already divided by the stiffness ``k0`` the
+    refit put on it) is not resolved by the record, or None: knots closer together than twice
+    the position's resolution (one encoder step, or one noise sd), the spacing under which
+    ``fit`` places no knot. A refit whose κ0 compresses the curve that far (a 0.01° encoder's
+    joint made apart, κ0 ×18: knots from 26 µrad, the step 175 µrad) writes a shape the sensor
+    cannot see, which is a bound the record pushed it to, not an estimate."""
+    tc = written.transition_curve
+    if written.model != "leuven" or tc.kind != "piecewise_linear" or len(tc.z) < 2:
+        return None
+    res = cp.step if cp.step > 0 else cp.sd
+    spacing = float(np.min(np.diff(np.asarray(tc.z, dtype=float))))
+    if res <= 0 or spacing >= 2.0 * res:
+        return None
+    u = f" {unit}" if unit else ""
+    return (f"with the presliding stiffness ×{k0:.3g} the file's, its knots lie {spacing:.3g}{u} apart (up to "
+            f"{tc.z[-1]:.3g}{u}), under twice the position's resolution ({res:.3g}{u}, "
+            f"{'an encoder step' if cp.step > 0 else 'its noise sd'}): the record does not resolve that shape, so "
+            f"the curve written is a bound the refit reached, not an estimate")
+
+
 REFIT_NFEV_FROM = 20  # least-squares steps of a refit that starts from another's solution (each step simulates)
 
 
@@ -2950,6 +2971,18 @@ def _rank_order(order: np.ndarray, log_speed: np.ndarray) -> SpeedOrder:
     return SpeedOrder(len(order), _corr(rankdata(order), rankdata(log_speed)))
 
 
+def load_order(cmp_: Comparison, mask: np.ndarray) -> SpeedOrder:
+    """How the normal load follows time: |Spearman ρ| of the load against time over the samples
+    compared (at most 4,000 of them, evenly spread; NaN without a varying load). Near 1 where the
+    load rises (or falls) over the session, steps or not: a drift in time then follows the same
+    trend, and a load's exponent fitted alone takes part of a drift up."""
+    idx = np.flatnonzero(mask)
+    idx = idx[:: max(1, len(idx) // 4000)]
+    if cmp_.load is None or len(idx) < 4 or np.ptp(cmp_.load[idx]) == 0:
+        return SpeedOrder(len(idx), math.nan)
+    return SpeedOrder(len(idx), abs(_corr(rankdata(cmp_.time[idx]), rankdata(cmp_.load[idx]))))
+
+
 def travel_order(cmp_: Comparison, mask: np.ndarray) -> SpeedOrder:
     """How the compared path follows time: |Spearman ρ| of position against time over the
     samples compared (at most 4,000 of them, evenly spread). Near 1 where the session covers
@@ -3340,6 +3373,13 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"(cyclic_softening) and one depending on the stroke's speed follow the same trend "
                           f"here; a softening is credited only with what the latter leaves, and either may be "
                           f"the cause. To tell: repeat the slowest strokes at the session's end")
+    loads = load_order(cmp_, allm) if {"normal_load", "time_drift"} <= set(s.candidates) else None
+    if loads is not None and loads.rho >= SPEED_ORDER_RHO:
+        # (said whichever is named: two alike candidates are each judged beside the other, but a
+        # load's α fitted where only it passes may still hold part of a drift, beyond its σ)
+        cmp_.notes.append(f"the normal load follows time (|Spearman ρ| {loads.rho:.2f}): a load effect and a drift in "
+                          f"time follow the same trend here, and the load's exponent may hold part of a drift (its σ "
+                          f"does not include that). To tell: {separating_experiment('normal_load', 'time_drift')}")
     must_show = {nm: (transition if EFFECTS[nm].acts_on == "stiffness" else sliding) for nm in EFFECTS
                  if nm != "normal_load"}
     regimes_m = regime_masks(cmp_)
@@ -3790,6 +3830,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         at_end = {k: (f"at the end of the diagnosis's refit range ({said}): the record pushes it further (the "
                       f"contact's shape, not the data's noise), so the value written is a bound, not an estimate")
                   for k, (v, rng, said) in ends.items() if _at_range_end(v, rng)}
+        unresolved = unresolved_curve(written_params, cmp_.reading.compared, final.k0, cmp_.position_unit)
+        if unresolved:
+            at_end["transition_curve"] = unresolved
+            cmp_.notes.append(f"the model written's transition curve: {unresolved}")
         if at_end:
             prov["held"] = {**(prov.get("held") or {}), **at_end}
         held = [e["name"] for e in final.entries if e["name"] not in named]

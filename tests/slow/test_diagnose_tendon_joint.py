@@ -46,5 +46,7 @@ def test_a_load_with_steps_on_a_rising_schedule_is_named_not_called_confounded_w
     assert rep["effects"] == ["normal_load"] and not rep["confounded"], (rep["effects"], rep["confounded"])
     said = [n for n in rep["notes"] if n.startswith("normal_load and time_drift explain much the same part")]
     assert len(said) == 1 and "normal_load shows a part of its own" in said[0], rep["notes"]
+    # the load rises over the session: that it follows time is said, with the experiment that tells
+    assert any(n.startswith("the normal load follows time") for n in rep["notes"]), rep["notes"]
     load_fx = next(e for e in rep["written_effects"] if e["name"] == "normal_load")
     assert abs(load_fx["params"]["alpha"] - 0.7) < 3 * load_fx["sd"]["alpha"], load_fx

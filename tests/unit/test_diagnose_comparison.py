@@ -505,6 +505,42 @@ def test_moved_from_held_tells_a_refit_from_the_common_level():
     assert moved["n"] == (f"{coulomb.n:.4g}", "3.5")
 
 
+def test_a_curve_compressed_below_the_sensors_resolution_is_written_as_a_bound():
+    # a 0.01° encoder (1.75·10⁻⁴ rad) and `fit`'s knots 0.52–2.76 mrad apart: the curve as
+    # fitted is resolved; with the presliding stiffness ×18 a refit reached, its knots are 29 µrad
+    # apart, under two encoder steps: said as a bound, with the spacing and the step
+    from leuven_friction.identify.diagnose import ComparedPath, bake, unresolved_curve
+    from leuven_friction.model import TransitionCurve, default_params
+
+    p = default_params().replace(transition_curve=TransitionCurve(
+        kind="piecewise_linear", z=(0.0, 5.2e-4, 1.35e-3, 1.93e-3, 2.76e-3), F=(0.0, 9.6e-3, 13.2e-3, 16.5e-3, 17.9e-3)))
+    enc = ComparedPath(np.zeros(3), 5e-5, np.deg2rad(0.01), 5, 3.5e-4)
+    assert unresolved_curve(bake(p, 1.0, 1.0), enc, 1.0, "rad") is None
+    said = unresolved_curve(bake(p, 0.25, 18.2), enc, 18.2, "rad")
+    assert said is not None and "0.000175 rad, an encoder step" in said and "not an estimate" in said, said
+    # a Gaussian sensor: its noise sd is the resolution
+    gauss = ComparedPath(np.zeros(3), 4e-4, 0.0, 5, 8e-4)
+    assert "its noise sd" in unresolved_curve(bake(p, 1.0, 1.0), gauss, 1.0)
+
+
+def test_a_load_rising_over_the_session_steps_or_not_is_told_to_follow_time():
+    # a tendon's pretension: 10 N, a step to 18 N, ramps to 30 N, a step to 36 N, a ramp to 40 N,
+    # with 0.15 N of noise: it follows time; the same load cycled up and down three times does not
+    from types import SimpleNamespace
+
+    from leuven_friction.identify.diagnose import SPEED_ORDER_RHO, load_order
+
+    rng = np.random.default_rng(2)
+    t = np.linspace(0.0, 116.0, 50000)
+    rising = np.interp(t, [0, 17.4, 17.401, 46.4, 69.6, 69.601, 116], [10, 10, 18, 26, 30, 36, 40])
+    cycled = 25.0 + 15.0 * np.sin(2 * np.pi * 3 * t / 116.0)
+    everywhere = np.ones(len(t), bool)
+    for load, follows in ((rising, True), (cycled, False)):
+        cmp_ = SimpleNamespace(time=t, load=load + rng.normal(0, 0.15, len(t)))
+        assert (load_order(cmp_, everywhere).rho >= SPEED_ORDER_RHO) == follows
+    assert math.isnan(load_order(SimpleNamespace(time=t, load=np.full(len(t), 20.0)), everywhere).rho)
+
+
 def test_jackknife_over_folds_is_the_standard_error_from_the_group_means():
     # the mean of k equal groups, each refit leaving one group out: the delete-a-group
     # jackknife's σ is the standard error of the mean estimated from the k group means,
