@@ -859,6 +859,10 @@ def test_a_longer_window_set_by_the_user_reads_slow_sliding_a_short_one_takes_fo
     # the derived window is short (the fast levels set it): the slowest level counts as rest
     assert derived.v_rest > 3 * 0.002
     assert np.mean(np.abs(derived.velocity[slow]) > derived.v_rest) < 0.2
+    # and the note says the encoder's step sets that rest speed, and what lowers it
+    per_window = q / (derived.compared.window * dt)
+    assert f"one encoder step per {derived.compared.window} samples is {per_window:.3g}" in derived.note()
+    assert "a longer window lowers it" in derived.note()
     W = 301
     m = motion_reading(rec, {"window": W})
     # the rest speed follows the window set: three times one encoder step per window (the
