@@ -1809,6 +1809,11 @@ def _at_range_end(x: float, ends) -> bool:
     return x > 0 and bool(ends) and min(abs(math.log(x / e)) for e in ends) < 0.01
 
 
+# what marks the provenance.held entries a diagnosis writes for n, σ1 and the transition curve
+# at a bound (``unresolved_curve``, the refit's range ends): a later diagnosis says its own
+DIAGNOSIS_BOUNDS = ("the diagnosis's refit range", "the record does not resolve that shape")
+
+
 def unresolved_curve(written: FrictionParams, cp: ComparedPath, k0: float, unit: str = "") -> str | None:
     """Why the transition curve ``written`` (its z already divided by the stiffness ``k0`` the
     refit put on it) is not resolved by the record, or None: knots closer together than twice
@@ -1824,7 +1829,8 @@ def unresolved_curve(written: FrictionParams, cp: ComparedPath, k0: float, unit:
     if res <= 0 or spacing >= 2.0 * res:
         return None
     u = f" {unit}" if unit else ""
-    return (f"with the presliding stiffness ×{k0:.3g} the file's, its knots lie {spacing:.3g}{u} apart (up to "
+    return ((f"with the presliding stiffness ×{k0:.3g} the file's, " if abs(math.log(k0)) > 0.01 else "")
+            + f"its knots lie {spacing:.3g}{u} apart (up to "
             f"{tc.z[-1]:.3g}{u}), under twice the position's resolution ({res:.3g}{u}, "
             f"{'an encoder step' if cp.step > 0 else 'its noise sd'}): the record does not resolve that shape, so "
             f"the curve written is a bound the refit reached, not an estimate")
@@ -3411,7 +3417,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     names = [c for c in s.candidates if c in EFFECTS and not (EFFECTS[c].needs and any(
         getattr(cmp_.context(), nd) is None or (nd == "load" and np.ptp(cmp_.load) <= 0) for nd in EFFECTS[c].needs))]
     names = [c for c in names if c not in {e["name"] for e in prior0}]
-    pending = None  # the last winner, the rivals it did not clearly beat, and the state before it was named
+    # the last winner, the rivals it did not clearly beat, the state before it was named, and the
+    # alike rivals told apart in its favour
+    pending = None
     for _ in range(2 * s.max_effects):  # a round taken back (below) excludes two candidates or more
         step = len(named)
         if step >= s.max_effects:
@@ -3496,12 +3504,14 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             # after all (a linear stage's drift on a sweep in rising speeds: a softening won by
             # 4.51 % to 4.49 % held out, and the drift, 19 % better in the steady sliding alone,
             # gained 0.2 % beside it). Both are reported confounded and the round is taken back.
-            last, alike, before = pending
+            last, alike, before, beaten = pending
             pending = None
             subsumed = [(o, now) for o in alike for now in evid if now.name == o.name and not now.gains_held_out(s)]
             if subsumed:
                 for o, now in subsumed:
                     confounded.append(_confounding(last, o, s, beside_gain=now.heldout_gain))
+                # those told apart in its favour (``told_apart``) explained what it did: confounded with it too
+                confounded.extend(_confounding(last, o, s) for o in beaten)
                 excluded |= {last.name} | {o.name for o, _ in subsumed}
                 cur, cur_terms, cur_u, k0 = before.cur, before.cur_terms, before.cur_u, before.k0
                 named.pop()
@@ -3526,8 +3536,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             where the other no longer gains held out beside it, shows a part of the residual of
             its own ("e" or "o": a load with steps on a rising schedule, which a drift in time
             follows everywhere but at the steps); "both" where each passes beside the other (two
-            effects); None where neither does (confounded, as a load that rises as a drift would).
-            Said in the notes either way."""
+            effects); None otherwise (confounded, as a load that rises as a drift would). Said in
+            the notes either way."""
             alt_o, alt_e = beside(o), beside(e)
             if alt_o is None or alt_e is None:
                 return None
@@ -3536,6 +3546,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             engine.following_held(None)
             ok = {"e": ev_e is not None and ev_e.passes(s), "o": ev_o is not None and ev_o.passes(s)}
             gains = {"e": ev_e is not None and ev_e.gains_held_out(s), "o": ev_o is not None and ev_o.gains_held_out(s)}
+            # (one passing beside the other while the other still gains beside it, but does not
+            # pass — not where its physics shows, or not settling — is not told apart either)
             which = ("both" if ok["e"] and ok["o"] else "e" if ok["e"] and not gains["o"]
                      else "o" if ok["o"] and not gains["e"] else None)
 
@@ -3545,7 +3557,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 return (f"{a.name} beside {b.name} gains {ev.heldout_gain:.1%} held out (folds "
                         f"{ev.folds_improved}/{ev.folds_informative})")
             outcome = {"both": "each shows a part of its own", "e": f"{e.name} shows a part of its own",
-                       "o": f"{o.name} shows a part of its own", None: "neither shows a part of its own: confounded"}[which]
+                       "o": f"{o.name} shows a part of its own", None: "not told apart: confounded"}[which]
             cmp_.notes.append(f"{e.name} and {o.name} explain much the same part (correlation of their corrections "
                               f"{_corr(e.correction, o.correction):.2f}, held-out gains {e.heldout_gain:.1%} and "
                               f"{o.heldout_gain:.1%}); each fitted beside the other: {said(ev_e, e, o)}, "
@@ -3554,17 +3566,19 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
 
         winner = None
         blocked = set()
+        notes_before = len(cmp_.notes)  # (a round taken back takes the notes of its telling apart too)
+        beaten = []  # the winner's alike rivals that gain nothing beside it (``told_apart``)
         for e in passing:
             if e.name in blocked:
                 continue
-            rivals = []
+            rivals, beaten = [], []
             for o in passing:
                 if o is e or o.name in blocked:
                     continue
                 if _corr(e.correction, o.correction) >= s.confound_corr and not _clearly_better(e, o, s):
                     which = told_apart(e, o) if s.tell_apart else None
                     if which == "e":
-                        blocked.add(o.name)  # it gains nothing beside e
+                        beaten.append(o)  # it gains nothing beside e: out with e named, confounded with e if not
                     elif which == "o":
                         rivals = None  # e gains nothing beside o: o is looked at in its turn
                         blocked.add(e.name)
@@ -3574,11 +3588,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             if rivals is None:
                 continue
             if rivals:
-                for o in rivals:
+                for o in rivals + beaten:
                     confounded.append(_confounding(e, o, s))
                     blocked.add(o.name)
                 blocked.add(e.name)
                 continue
+            blocked |= {o.name for o in beaten}
             winner = e
             break
         excluded |= blocked
@@ -3590,7 +3605,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # again beside it in the next round
         alike = [o for o in passing if o is not winner and o.name not in blocked and not _clearly_better(winner, o, s)]
         pending = (winner, alike, _LoopState(cur, list(cur_terms), cur_u, k0, len(steps), len(scored), len(fits),
-                                             len(rounds), len(cmp_.notes))) if alike else None
+                                             len(rounds), notes_before), beaten) if alike else None
         named.append(winner.name)
         # σ of every named effect's parameters from this round's cross-validation, where they were
         # all refitted with the winner; the last round's go into the file written
@@ -3812,7 +3827,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         unc.update({f"effects.{i}.params.{k}": v for i, sd in enumerate(written_sd) for k, v in sd.items()
                     if math.isfinite(v) and f"effects.{i}.params.{k}" not in loose})
         prov = dict(params.provenance)
-        held_before = {k: v for k, v in (prov.get("held") or {}).items() if not k.startswith("effects.")}
+        # (the bounds a diagnosis says, below, are said again by this one or not at all)
+        held_before = {k: v for k, v in (prov.get("held") or {}).items()
+                       if not k.startswith("effects.") and not any(m in str(v) for m in DIAGNOSIS_BOUNDS)}
         prov.pop("held", None)  # (an older file's entries of its effects go: their indices are the old file's)
         if held_before or loose:
             prov["held"] = {**held_before, **loose}

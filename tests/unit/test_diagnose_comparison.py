@@ -849,6 +849,12 @@ def _coarse_encoder_sweep(tmp_path):
     return load_recording(str(path)), t, v, dt, q
 
 
+def _note_with_window_set(rec):
+    from leuven_friction.identify.diagnose import motion_reading
+
+    return motion_reading(rec, {"window": 301}).note()
+
+
 def test_a_longer_window_set_by_the_user_reads_slow_sliding_a_short_one_takes_for_rest(tmp_path):
     from leuven_friction.identify.diagnose import motion_reading
 
@@ -859,10 +865,14 @@ def test_a_longer_window_set_by_the_user_reads_slow_sliding_a_short_one_takes_fo
     # the derived window is short (the fast levels set it): the slowest level counts as rest
     assert derived.v_rest > 3 * 0.002
     assert np.mean(np.abs(derived.velocity[slow]) > derived.v_rest) < 0.2
-    # and the note says the encoder's step sets that rest speed, and what lowers it
-    per_window = q / (derived.compared.window * dt)
-    assert f"one encoder step per {derived.compared.window} samples is {per_window:.3g}" in derived.note()
-    assert "a longer window lowers it" in derived.note()
+    # and the note says the encoder's step sets that rest speed (one step per window, above the
+    # slowest level's 0.002 rad/s), and what lowers it
+    import re
+
+    said = re.search(r"one encoder step per (\d+) samples is ([0-9.e+-]+)", derived.note())
+    assert said and int(said.group(1)) == derived.compared.window, derived.note()
+    assert float(said.group(2)) == pytest.approx(q / (derived.compared.window * dt), rel=0.01) and float(said.group(2)) > 0.002
+    assert "a longer window lowers it" in derived.note() and "lowers it" not in _note_with_window_set(rec)
     W = 301
     m = motion_reading(rec, {"window": W})
     # the rest speed follows the window set: three times one encoder step per window (the
