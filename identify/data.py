@@ -139,6 +139,7 @@ COUNTS = ("count", "counts", "cts", "ct", "inc", "incs", "increments", "pulses",
 
 
 CURRENTS = ("a", "ma", "amp", "amps", "ampere", "amperes")  # a motor current, which is no force until scaled
+MASSES = ("kg", "g", "lb", "lbm", "t")  # a mass, which is no force until weighed (a payload logged as such)
 
 
 def _current_fix(name: str, unit: str) -> str:
@@ -278,10 +279,26 @@ def _assume_si(rec: "Recording", unitless: list) -> str:
     given = ", ".join(f"{rec.columns[s]} in {table[s]}" for s in unitless if s in table)
     time = ["time in s"] if "time" in unitless else []
     said = ", ".join(time + ([given] if given else []))
+    counts = _counts_hint(rec) if "position" in unitless else ""
     if kind:
-        return f"no unit in the header of {said}: assumed SI, a {kind} machine's (as {why} say)"
+        return f"no unit in the header of {said}: assumed SI, a {kind} machine's (as {why} say){counts}"
     return (f"no unit in the header of {said}: assumed SI, a rotary machine's (nothing says linear or rotary: "
-            f"write the units in the header, e.g. 'position [m]', 'force [N]')")
+            f"write the units in the header, e.g. 'position [m]', 'force [N]'){counts}")
+
+
+COUNTS_SPAN = 1000  # a unitless position of whole numbers over more than this many of them reads as encoder counts
+
+
+def _counts_hint(rec: "Recording") -> str:
+    """For a position read without a unit: where it holds only whole numbers spread over more than
+    COUNTS_SPAN of them (an encoder's counts, not metres or radians), what to write instead. A
+    gantry made apart, its counts read as metres, had v_s written as 414 m/s without a word."""
+    x = np.asarray(rec.position, dtype=np.float64)
+    finite = x[np.isfinite(x)]
+    if not len(finite) or np.ptp(finite) <= COUNTS_SPAN or np.any(finite != np.round(finite)):
+        return ""
+    return (f"; its position holds only whole numbers over {np.ptp(finite):.0f} of them: if those are encoder "
+            f"counts, write the size of one as its unit, e.g. '{rec.columns['position']} [0.01 mm]'")
 
 
 def _split_header(name: str) -> tuple[str, str | None]:
@@ -616,6 +633,12 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                                     f"{_counts_fix(headers[col][0])}")
                 if unit.strip().lower() in CURRENTS and sig in ("force", "friction"):
                     raise DataError(f"{path}: column {col!r}: unit {unit!r}: {_current_fix(headers[col][0], unit)}")
+                if unit.strip().lower() in MASSES and sig in ("force", "friction", "normal_load"):
+                    # a payload's mass is not the load on the contact: the carriage's own weight presses it too
+                    what = ("the normal load is the force pressing the contact: the whole moving mass on it (carriage "
+                            "and payload) times g, in N" if sig == "normal_load" else f"{sig} is a force, in N")
+                    raise DataError(f"{path}: column {col!r}: unit {unit!r} is a mass, not a force: {what}; write "
+                                    f"that column in N")
                 raise DataError(f"{path}: column {col!r}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
             factor, si = unit_of(unit, sig)
             if si not in SI_OF[sig]:

@@ -3679,6 +3679,14 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         fits = [f if i < 1 + k else (*without_term(*f, gone),) for i, f in enumerate(fits) if i != 1 + k]
         written = written_fits(engine, params.replace(effects=()), fits, refit_curve=refit_curve,
                                start=alone.u if len(alone.u) else None)
+    friction_named = [nm for nm in named if EFFECTS[nm].acts_on == "friction" and "load" not in EFFECTS[nm].needs]
+    if friction_named and rec.normal_load is None and getattr(rec, "ignored", None):
+        # (a gantry made apart, its payload logged in kg and so not read: a drift "rising" fivefold
+        # was named for five payload changes, up and down, on a session with no warm-up)
+        cmp_.notes.append(f"{' and '.join(friction_named)} named while no normal load is read (columns not read: "
+                          f"{', '.join(map(str, rec.ignored))}): friction that follows a load changed during the "
+                          f"session is taken up by a friction effect in time or along the travel; if one of those "
+                          f"columns is that load, give it in N (--columns normal_load=<column>) and diagnose again")
     sds, decided = rounds[-1]
     if "time_drift" in s.candidates and len(holds) >= 4 and abs(order.rho) < SPEED_ORDER_RHO:
         span = float(cmp_.time[allm][-1] - cmp_.time[allm][0]) if allm.any() else 0.0

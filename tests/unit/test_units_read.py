@@ -165,6 +165,36 @@ def test_a_motor_current_is_refused_saying_to_write_the_torque_constant_as_its_u
     assert rec.units["force"] == "N*m" and np.allclose(rec.force, 0.12 * f)
 
 
+def test_a_position_of_whole_numbers_without_a_unit_is_said_to_look_like_encoder_counts(tmp_path):
+    # a gantry's motor encoder (4096 counts per 60 mm) logged without a unit: read as metres, as the
+    # header says nothing, but the note says what whole numbers over thousands of counts look like;
+    # the same travel in metres says nothing of counts
+    t, x, f = _signals()
+    counts = np.round((x - x.min()) / np.ptp(x) * 27000)
+    p = tmp_path / "gantry.csv"
+    p.write_text(_csv(["time", "position", "force"], [t, counts, f]))
+    note = load_recording(p).units_assumed
+    assert "whole numbers over 27000" in note and "encoder counts" in note and "'position [0.01 mm]'" in note, note
+    p.write_text(_csv(["time", "position", "force"], [t, counts * 60e-3 / 4096, f]))
+    assert "encoder counts" not in load_recording(p).units_assumed
+
+
+def test_a_payload_in_kg_named_as_the_normal_load_is_refused_saying_the_load_is_a_force(tmp_path):
+    # a gantry's payload logged in kg: the load on its rail is the whole moving mass times g, which
+    # the file does not give (the carriage's own weight presses it too); refused in one line
+    t, x, f = _signals()
+    p = tmp_path / "gantry.csv"
+    p.write_text(_csv(["time [s]", "position [m]", "F_drive [N]", "payload [kg]"], [t, x, f, np.full(len(t), 5.0)]))
+    with pytest.raises(DataError) as said:
+        load_recording(p, columns={"normal_load": "payload [kg]"})
+    msg = str(said.value)
+    assert "\n" not in msg and "'payload [kg]'" in msg and "is a mass, not a force" in msg and "in N" in msg, msg
+    assert "carriage and payload" in msg and "times g" in msg, msg
+    # the same column in N is read as the load
+    p.write_text(_csv(["time [s]", "position [m]", "F_drive [N]", "payload [N]"], [t, x, f, np.full(len(t), 49.0)]))
+    assert np.allclose(load_recording(p, columns={"normal_load": "payload [N]"}).normal_load, 49.0)
+
+
 @pytest.mark.parametrize("start,fmt", [("2026-11-29 23:59:59.5", "%Y-%m-%d %H:%M:%S.%f"),
                                        ("2026-11-29T23:59:59.5", "%Y-%m-%dT%H:%M:%S.%f"),
                                        ("2026-11-29 23:59:59.5", "%H:%M:%S.%f")])
