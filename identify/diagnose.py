@@ -437,6 +437,11 @@ class ComparedPath:
     window: int
     h: float
 
+    def step_speed(self, dt: float) -> float:
+        """One encoder step per window of samples ``dt`` apart: the slowest speed the window's
+        slope tells from rest on a quantised position (0 without steps)."""
+        return self.step / (self.window * dt) if self.step > 0 else 0.0
+
 
 def compared_path(x: np.ndarray, dt: float, window: int | None = None) -> ComparedPath:
     """``smoothed_path`` with its window and play width derived from the position's own noise
@@ -531,7 +536,7 @@ class MotionReading:
         # a rest speed the encoder's step sets (three steps per window, over the velocity's noise)
         # reads slower sliding as rest: a 0.01° encoder at 2 kHz, 0.21 rad/s, 82 % of a tendon
         # joint's samples, its runs at 0.03–0.12 rad/s among them; the window set longer lowers it
-        per_window = cp.step / (cp.window * self.dt) if cp.step > 0 else 0.0
+        per_window = cp.step_speed(self.dt)
         coarse = (f" (one encoder step per {cp.window} samples is {per_window:.3g}{v}: slower sliding reads as rest "
                   f"here; a longer window lowers it)"
                   if per_window > self.v_noise and not {"window", "v_rest"} & set(self.set_by_user) else "")
@@ -578,7 +583,7 @@ def motion_reading(rec: Recording, overrides: dict | None = None) -> MotionReadi
     # the slope is taken against the actual times and never across a gap, as the fit does
     vel = piecewise_slope(t, x, cp.window, gap_threshold(t))
     v_noise = cp.sd * math.sqrt(12.0) / (cp.window**1.5 * dt)
-    v_rest = user.get("v_rest", 3.0 * max(v_noise, (cp.step / (cp.window * dt)) if cp.step else 0.0))
+    v_rest = user.get("v_rest", 3.0 * max(v_noise, cp.step_speed(dt)))
     tacho = None
     if rec.velocity is not None:
         vt = np.asarray(rec.velocity, dtype=np.float64)
@@ -2989,11 +2994,7 @@ def load_order(cmp_: Comparison, mask: np.ndarray) -> SpeedOrder:
     compared (at most 4,000 of them, evenly spread; NaN without a varying load). Near 1 where the
     load rises (or falls) over the session, steps or not: a drift in time then follows the same
     trend, and a load's exponent fitted alone takes part of a drift up."""
-    idx = np.flatnonzero(mask)
-    idx = idx[:: max(1, len(idx) // 4000)]
-    if cmp_.load is None or len(idx) < 4 or np.ptp(cmp_.load[idx]) == 0:
-        return SpeedOrder(len(idx), math.nan)
-    return SpeedOrder(len(idx), abs(_corr(rankdata(cmp_.time[idx]), rankdata(cmp_.load[idx]))))
+    return _time_order(cmp_.time, cmp_.load, mask)
 
 
 def travel_order(cmp_: Comparison, mask: np.ndarray) -> SpeedOrder:
@@ -3001,11 +3002,17 @@ def travel_order(cmp_: Comparison, mask: np.ndarray) -> SpeedOrder:
     samples compared (at most 4,000 of them, evenly spread). Near 1 where the session covers
     its travel one way — a disc or a spindle turning one way, a feed run once along its axis —
     and every position is passed once, at one time."""
+    return _time_order(cmp_.time, cmp_.path, mask)
+
+
+def _time_order(time: np.ndarray, signal: np.ndarray | None, mask: np.ndarray) -> SpeedOrder:
+    """|Spearman ρ| of ``signal`` against ``time`` over the samples in ``mask`` (at most 4,000
+    of them, evenly spread); NaN without a signal, with too few samples or a constant one."""
     idx = np.flatnonzero(mask)
     idx = idx[:: max(1, len(idx) // 4000)]
-    if len(idx) < 4 or np.ptp(cmp_.path[idx]) == 0:
+    if signal is None or len(idx) < 4 or np.ptp(signal[idx]) == 0:
         return SpeedOrder(len(idx), math.nan)
-    return SpeedOrder(len(idx), abs(_corr(rankdata(cmp_.time[idx]), rankdata(cmp_.path[idx]))))
+    return SpeedOrder(len(idx), abs(_corr(rankdata(time[idx]), rankdata(signal[idx]))))
 
 
 RIPPLE_ONE_WAY_PERIODS = 8  # a ripple along a travel covered one way must repeat this often over it
