@@ -3571,38 +3571,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                               f"{said(ev_o, o, e)} — {outcome}")
             return which
 
-        winner = None
-        blocked = set()
         notes_before = len(cmp_.notes)  # (a round taken back takes the notes of its telling apart too)
-        beaten = []  # the winner's alike rivals that gain nothing beside it (``told_apart``)
-        for e in passing:
-            if e.name in blocked:
-                continue
-            rivals, beaten = [], []
-            for o in passing:
-                if o is e or o.name in blocked:
-                    continue
-                if _corr(e.correction, o.correction) >= s.confound_corr and not _clearly_better(e, o, s):
-                    which = told_apart(e, o) if s.tell_apart else None
-                    if which == "e":
-                        beaten.append(o)  # it gains nothing beside e: out with e named, confounded with e if not
-                    elif which == "o":
-                        rivals = None  # e gains nothing beside o: o is looked at in its turn
-                        blocked.add(e.name)
-                        break
-                    elif which is None:
-                        rivals.append(o)
-            if rivals is None:
-                continue
-            if rivals:
-                for o in rivals + beaten:
-                    confounded.append(_confounding(e, o, s))
-                    blocked.add(o.name)
-                blocked.add(e.name)
-                continue
-            blocked |= {o.name for o in beaten}
-            winner = e
-            break
+        choice = choose_winner(
+            passing, lambda e, o: _corr(e.correction, o.correction) >= s.confound_corr and not _clearly_better(e, o, s),
+            told_apart if s.tell_apart else (lambda e, o: None))
+        confounded.extend(_confounding(e, o, s) for e, o in choice.confounded)
+        winner, beaten, blocked = choice.winner, choice.beaten, choice.blocked
         excluded |= blocked
         if winner is None:
             break
@@ -4088,6 +4062,50 @@ def _clearly_better(e: "Evidence", o: "Evidence", s: Settings) -> bool:
     and in most folds."""
     return bool(e.heldout_gain - o.heldout_gain >= s.clear_margin * e.heldout_gain
                 and int(np.sum(e.heldout_sse < o.heldout_sse)) > len(e.heldout_sse) / 2)
+
+
+class Choice(NamedTuple):
+    """One round's decision among the passing candidates (``choose_winner``)."""
+
+    winner: "Evidence | None"
+    beaten: list  # the winner's alike rivals told apart in its favour: gain nothing beside it
+    blocked: set  # names out of the running from this round on (confounded, or beaten)
+    confounded: list  # (e, o) pairs reported confounded, in the order found
+
+
+def choose_winner(passing: list, alike, told_apart) -> Choice:
+    """The round's winner among ``passing`` (best held out first): the first not blocked that has
+    no alike rival left. ``alike(e, o)``: their corrections alike and ``e`` not clearly better;
+    ``told_apart(e, o)``: "e" (``o`` gains nothing beside ``e``: beaten, out with ``e`` named),
+    "o" (``e`` gains nothing beside ``o``: ``e`` out, ``o`` looked at in its turn), "both" (each
+    shows a part of its own: ``e`` may win, ``o`` is looked at again next round) or None (the two
+    are confounded: ``e``, its alike rivals and those it beat are all out, reported in pairs)."""
+    blocked: set = set()
+    pairs: list = []
+    for e in passing:
+        if e.name in blocked:
+            continue
+        rivals, beaten = [], []
+        for o in passing:
+            if o is e or o.name in blocked or not alike(e, o):
+                continue
+            which = told_apart(e, o)
+            if which == "e":
+                beaten.append(o)
+            elif which == "o":
+                rivals = None
+                blocked.add(e.name)
+                break
+            elif which is None:
+                rivals.append(o)
+        if rivals is None:
+            continue
+        if rivals:
+            pairs.extend((e, o) for o in rivals + beaten)
+            blocked |= {o.name for o in rivals + beaten} | {e.name}
+            continue
+        return Choice(e, beaten, blocked | {o.name for o in beaten}, pairs)
+    return Choice(None, [], blocked, pairs)
 
 
 def _confounding(e: "Evidence", o: "Evidence", s: Settings, beside_gain: float | None = None) -> dict:

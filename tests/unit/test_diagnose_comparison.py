@@ -1153,3 +1153,64 @@ def test_a_set_with_a_load_effect_is_compared_without_it_on_a_recording_without_
     got, base = friction_compared(rec, loaded), friction_compared(rec, default_params())
     assert got.left_out == ("normal_load",) and base.left_out == ()
     np.testing.assert_array_equal(got.model, base.model)  # the set without its load effect, as given
+
+
+# ---------------------------------------------------------------- one round's choice among rivals
+class _Cand:
+    """A passing candidate as ``choose_winner`` sees it: a name (they come best held out first)."""
+
+    def __init__(self, name):
+        self.name = name
+
+
+def _choose(names, alike_pairs, verdicts):
+    """``choose_winner`` over candidates named ``names``; ``alike_pairs``: unordered pairs whose
+    corrections are alike; ``verdicts[(e, o)]``: what judging each beside the other says."""
+    from leuven_friction.identify.diagnose import choose_winner
+    cands = [_Cand(n) for n in names]
+    alike = {frozenset(p) for p in alike_pairs}
+    asked = []
+
+    def told_apart(e, o):
+        asked.append((e.name, o.name))
+        return verdicts.get((e.name, o.name))
+    c = choose_winner(cands, lambda e, o: frozenset((e.name, o.name)) in alike, told_apart)
+    return (c.winner.name if c.winner else None, sorted(o.name for o in c.beaten), sorted(c.blocked),
+            [(e.name, o.name) for e, o in c.confounded], asked)
+
+
+def test_three_candidates_two_alike_the_best_beating_its_rival_is_named_and_the_third_stays():
+    # drift (best) and load alike, the load gaining nothing beside the drift; the ripple unlike both
+    assert _choose(["drift", "load", "ripple"], [("drift", "load")], {("drift", "load"): "e"}) == (
+        "drift", ["load"], ["load"], [], [("drift", "load")])
+
+
+def test_three_candidates_two_alike_and_not_told_apart_are_confounded_and_the_third_is_named():
+    assert _choose(["drift", "load", "ripple"], [("drift", "load")], {}) == (
+        "ripple", [], ["drift", "load"], [("drift", "load")], [("drift", "load")])
+
+
+def test_the_best_gaining_nothing_beside_its_alike_rival_gives_way_to_it():
+    # the drift gains nothing beside the load: out; the load is looked at in its turn, and the
+    # drift, out already, is not asked again
+    assert _choose(["drift", "load", "ripple"], [("drift", "load")], {("drift", "load"): "o"}) == (
+        "load", [], ["drift"], [], [("drift", "load")])
+
+
+def test_two_alike_each_showing_a_part_of_its_own_leave_the_second_for_the_next_round():
+    assert _choose(["drift", "load", "ripple"], [("drift", "load")], {("drift", "load"): "both"}) == (
+        "drift", [], [], [], [("drift", "load")])
+
+
+def test_a_winner_confounded_with_one_rival_takes_the_rival_it_beat_into_the_confounding():
+    # all three alike: the drift beats the load, but is not told apart from the ripple, so
+    # nothing is named and all three are reported with the drift
+    assert _choose(["drift", "load", "ripple"], [("drift", "load"), ("drift", "ripple"), ("load", "ripple")],
+                   {("drift", "load"): "e"}) == (
+        None, [], ["drift", "load", "ripple"], [("drift", "ripple"), ("drift", "load")],
+        [("drift", "load"), ("drift", "ripple")])
+
+
+def test_without_telling_apart_every_alike_pair_with_the_best_is_confounded():
+    assert _choose(["a", "b", "c"], [("a", "b"), ("a", "c")], {}) == (
+        None, [], ["a", "b", "c"], [("a", "b"), ("a", "c")], [("a", "b"), ("a", "c")])
