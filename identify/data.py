@@ -164,6 +164,15 @@ def _fits(unit: str | None, sig: str) -> bool:
     return u is not None and u[1] in SI_OF[sig]
 
 
+def may_be_load(column: str) -> bool:
+    """Whether a column no signal was taken from may hold a normal load by its header's unit: none
+    given, one of a force or a moment, or one not known here (a clamp's pressure in bar presses a
+    contact too); not a unit of another kind (a winding's °C, a time, a length)."""
+    unit = _split_header(column)[1]
+    u = unit_of(unit, "normal_load") if unit is not None else None
+    return u is None or u[1] in SI_OF["normal_load"]
+
+
 def _reads_as_not_measured(key: str, sig: str) -> str:
     """What a header name's words say a column of signal ``sig`` is if not a measurement ("a
     reference (ref)", "a command (cmd)" of a motion; a commanded force is the one applied), or "":

@@ -89,7 +89,7 @@ from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
-from .data import DataError, Recording, columns_option
+from .data import DataError, Recording, columns_option, may_be_load
 from .errors import IdentificationError
 from .segment import (across_gaps, checked_threshold, gap_threshold, gross_sliding_mask, piecewise_slope, speed_levels,
                       steady_velocity_mask, time_gaps)
@@ -106,6 +106,12 @@ class Settings:
     min_gain: float = 0.03  # pooled held-out RMS must fall by this fraction
     confound_corr: float = 0.7  # corrections this alike explain the same residual
     tell_apart: bool = True  # two alike candidates are each judged beside the other before they are called confounded
+    # a candidate passing in a round where a pair is found confounded is named only if it passes
+    # beside the pair's better one too (``choose_winner``)
+    beside_confounded: bool = True
+    # a force along the travel, where shown (``travel_force``), is taken out of the friction
+    # compared before the candidates are judged
+    travel_force_out: bool = True
     clear_margin: float = 0.25  # the better of two alike candidates must gain this much more (relative)
     max_effects: int = 3
     free_steady: bool = True  # the alternative holds a free correction to S(v) (FreeSteadyCurve)
@@ -2035,6 +2041,10 @@ class TravelForce:
     speed_gap_sd: float = 0.0
     gain: float = 0.0  # the share of the sliding residual's RMS it takes out (each run's own offset out first)
 
+    def along(self, cmp_: "Comparison") -> np.ndarray:
+        """The force along the compared path, as the comparison sees friction (``filtered``)."""
+        return cmp_.filtered(self.amplitude * np.sin(2.0 * math.pi * cmp_.path / self.wavelength + self.phase))
+
     @property
     def shown(self) -> bool:
         """Clear of none by TRAVEL_FORCE_SIGMAS σ, twice the part following the motion, seen at
@@ -2079,9 +2089,16 @@ def travel_force(cmp_: Comparison, resid: np.ndarray, mask: np.ndarray, lam_min:
         return None
     u, d = up.astype(float), (~up).astype(float)
 
+    def waves(lam):
+        """sin θ and cos θ of the whole path, seen as the measurement sees a force along it (the
+        comparison's moving average, ``filtered``), at the sliding samples: averaged over 0.05 s,
+        a ball screw's motor turning at 100 rad/s passes 5 rad, more than its cogging's period of
+        π, and the faster half of the sliding read a fraction of the slower's."""
+        th = 2.0 * math.pi * cmp_.path / lam
+        return cmp_.filtered(np.sin(th))[idx], cmp_.filtered(np.cos(th))[idx]
+
     def columns(lam):
-        th = 2.0 * math.pi * x / lam
-        sn, cs = np.sin(th), np.cos(th)
+        sn, cs = waves(lam)
         return np.column_stack([within(u * sn), within(u * cs), within(d * sn), within(d * cs)])
 
     def rss(lam):
@@ -2089,8 +2106,16 @@ def travel_force(cmp_: Comparison, resid: np.ndarray, mask: np.ndarray, lam_min:
         return float(np.sum((y - A @ np.linalg.lstsq(A, y, rcond=None)[0]) ** 2))
 
     # the spectrum's peak is read to within a bin; the least squares places it (±3 %, a bin
-    # being a period less over the range, at least 3 periods a range)
-    lam = float(minimize_scalar(rss, bounds=(0.97 * lams[0], 1.03 * lams[0]), method="bounded",
+    # being a period less over the range, at least 3 periods a range). Over a travel of many
+    # periods the squares have a local minimum every λ²/span in λ (the wave slips a period over
+    # the span): a grid at a quarter of that first, then the best cell refined (a ball screw's
+    # π rad over 300 rad of travel: a local search from the peak stopped at 3.095)
+    span = float(np.ptp(x))
+    cell = 0.25 * lams[0] ** 2 / max(span, lams[0])
+    grid = np.linspace(0.97 * lams[0], 1.03 * lams[0], int(np.clip(math.ceil(0.06 * lams[0] / cell), 7, 400)) + 1)
+    best = grid[int(np.argmin([rss(g) for g in grid]))]
+    step = grid[1] - grid[0]
+    lam = float(minimize_scalar(rss, bounds=(best - step, best + step), method="bounded",
                                 options={"xatol": 1e-5 * lams[0]}).x)
     X = columns(lam)
 
@@ -2118,10 +2143,14 @@ def travel_force(cmp_: Comparison, resid: np.ndarray, mask: np.ndarray, lam_min:
     # position the speed's multiple: the slower and the faster half of the sliding must both
     # show it, and agree
     speed = np.abs(v[idx])
-    slow = speed < np.median(speed)
+    med = np.median(speed)
+    slow = speed < med
+    if slow.mean() < 0.25:
+        # speeds in levels, the slowest holding half the sliding or more: split above it
+        slow = speed <= med
     (ks, ss), (kf, sf) = keeping(slow), keeping(~slow)
-    th = 2.0 * math.pi * x / lam
-    wave = within(keeps[0] * np.sin(th) + keeps[1] * np.cos(th))
+    sn, cs = waves(lam)
+    wave = within(keeps[0] * sn + keeps[1] * cs)
     gain = 1.0 - math.sqrt(np.mean((y - wave) ** 2) / max(np.mean(y ** 2), 1e-300))
     frac = np.mod(x / lam, 1.0)
     k = np.minimum((frac * TRAVEL_FORCE_BINS).astype(int), TRAVEL_FORCE_BINS - 1)
@@ -2728,6 +2757,12 @@ class Diagnosis:
             L.append(f"Seen, not a friction effect: a force along the travel, of period {tf.wavelength:.4g} {pu} and "
                      f"amplitude {tf.amplitude:.3g} ± {tf.sd:.2g} {u}, keeps its sign whichever way the motion goes "
                      f"(cogging, gravity, a spring or a cable; notes).")
+        if not self.effects and self.noise > 0 and self.rms_base_refit > BASE_OFF_NOISE * self.noise:
+            # nothing named is not "nothing there": the rest the base refitted alone leaves is said
+            L.append(f"Left unexplained: the base refitted alone still leaves {self.rms_base_refit / self.noise:.1f} × "
+                     f"the noise floor, which no candidate ({', '.join(self.settings.candidates)}) takes up"
+                     + ("; the force along the travel above is part of it" if self.travel_force is not None else "")
+                     + " (the regimes below say where).")
         for c in self.unused:
             L.append(f"Passed, not named: {c['name']} improved the held-out prediction beside a free steady curve, but "
                      f"in the model written (n, σ1 and S(v) refitted with it) it removes only {100 * c['own_gain']:.1f} % "
@@ -3273,10 +3308,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                         f"recording has none: diagnose it with a model without that effect (fit this recording "
                         f"first), or give the load (--columns normal_load=<column>)")
     cmp_ = scored_comparison(rec, params, s)
-    if rec.normal_load is None and getattr(rec, "ignored", None):
+    load_like = [c for c in getattr(rec, "ignored", None) or [] if may_be_load(str(c))]
+    if rec.normal_load is None and load_like:
         # no load candidate without a load: a column the reader passed over may be one (a
-        # pitch bearing's bending moment, left out where the user named only the drive torque)
-        cmp_.notes.append(f"columns not read as any signal: {', '.join(map(str, rec.ignored))} — a load that presses "
+        # pitch bearing's bending moment, left out where the user named only the drive torque);
+        # one whose unit is of another kind (a winding's °C) is not offered as one
+        cmp_.notes.append(f"columns not read as any signal: {', '.join(map(str, load_like))} — a load that presses "
                           f"the contact among them is read with --columns normal_load=<column>, and only then is "
                           f"normal_load a candidate")
     base_params = params.replace(effects=())
@@ -3347,6 +3384,28 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     refit_prior_u = base_refit.u[len(base_refit.u) - len(prior_u):] if len(base_refit.u) else prior_u
     null = _fit(engine, prior_terms, np.concatenate([[math.log(base_refit.g), math.log(base_refit.k0)], refit_prior_u]),
                 allm, fit_k0=True, k0=1.0)
+    # what the base refitted alone leaves along the travel that no friction effect holds
+    tf = travel_force(cmp_, meas - null.pred, allm, ripple_min_wavelength(cmp_))
+    if tf is not None and tf.shown:
+        pu, fu = params.units.get("position", ""), params.units.get("force", "")
+        out = s.travel_force_out
+        cmp_.notes.append(f"a force along the travel: what the base refitted alone leaves in the sliding holds a "
+                          f"period of {tf.wavelength:.4g} {pu} of amplitude {tf.amplitude:.3g} ± {tf.sd:.2g} {fu} "
+                          f"that keeps its sign whichever way the motion goes (the part following the motion's "
+                          f"sign, as a friction ripple's does, {tf.following:.2g}): cogging, gravity, a spring or a "
+                          f"cable, not a friction effect — no candidate holds it; compensate it apart from friction"
+                          + ("; it is taken out of the friction compared (every gap and figure here) before the "
+                             "candidates are judged, so that none is credited with the part of it a friction "
+                             "effect can fit" if out else ""))
+        if out:
+            # a ball screw's cogging of period π rad, left in, was named a friction ripple of 3.3 rad
+            # that took 10 % of the gap: a ripple follows the motion's sign and fits a part of any
+            # such force. In place: the engine and every gap read ``cmp_.measured``
+            meas -= tf.along(cmp_)
+            pred_given_c = pred_given + model_nuisance(meas - pred_given, allm, cmp_.memory_offset,
+                                                       cmp_.acceleration).correction
+            rms0 = _rms((meas - pred_given_c)[allm])
+            null = _fit(engine, prior_terms, null.u, allm, fit_k0=True, k0=1.0)
     k0 = null.k0
     # the file's own effects, refitted here with the base: one that does next to nothing on this
     # recording is said (a set diagnosed on another recording carries what this one may not show;
@@ -3571,11 +3630,30 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                               f"{said(ev_o, o, e)} — {outcome}")
             return which
 
+        def stands_apart(c: Evidence, e: Evidence) -> tuple:
+            """``c``, passing this round, judged beside ``e`` as fitted, ``e`` being confounded
+            (``choose_winner``): whether it still passes, and its held-out gain there (None
+            under the bar in-sample). Said in the notes either way."""
+            alt = beside(e)
+            if alt is None:
+                return True, None  # (``e`` refits κ0: nothing to judge beside; as before)
+            say(0.1 + 0.8 * (step + 0.97) / s.max_effects, f"step {step + 1}: {c.name} beside {e.name}")
+            ev = judge(c.name, alt)
+            engine.following_held(None)
+            ok = ev is not None and ev.passes(s)
+            gain = ev.heldout_gain if ev is not None and ev.cross_validated else None
+            cmp_.notes.append(f"{c.name} passed judged without {e.name}, which is confounded; fitted beside it, "
+                              + ("it gains under the bar in-sample" if gain is None else
+                                 f"it gains {gain:.1%} held out (folds {ev.folds_improved}/{ev.folds_informative})")
+                              + (" and passes: it shows a part of its own" if ok else
+                                 " — not named: it stood in for the confounded part"))
+            return ok, gain
+
         notes_before = len(cmp_.notes)  # (a round taken back takes the notes of its telling apart too)
         choice = choose_winner(
             passing, lambda e, o: _corr(e.correction, o.correction) >= s.confound_corr and not _clearly_better(e, o, s),
-            told_apart if s.tell_apart else (lambda e, o: None))
-        confounded.extend(_confounding(e, o, s) for e, o in choice.confounded)
+            told_apart if s.tell_apart else (lambda e, o: None), stands_apart if s.beside_confounded else None)
+        confounded.extend(_confounding(p.e, p.o, s, p.beside_gain, p.stood_in) for p in choice.confounded)
         winner, beaten, blocked = choice.winner, choice.beaten, choice.blocked
         excluded |= blocked
         if winner is None:
@@ -3661,11 +3739,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         written = written_fits(engine, params.replace(effects=()), fits, refit_curve=refit_curve,
                                start=alone.u if len(alone.u) else None)
     friction_named = [nm for nm in named if EFFECTS[nm].acts_on == "friction" and "load" not in EFFECTS[nm].needs]
-    if friction_named and rec.normal_load is None and getattr(rec, "ignored", None):
+    if friction_named and rec.normal_load is None and load_like:
         # (a gantry made apart, its payload logged in kg and so not read: a drift "rising" fivefold
         # was named for five payload changes, up and down, on a session with no warm-up)
         cmp_.notes.append(f"{' and '.join(friction_named)} named while no normal load is read (columns not read: "
-                          f"{', '.join(map(str, rec.ignored))}): friction that follows a load changed during the "
+                          f"{', '.join(map(str, load_like))}): friction that follows a load changed during the "
                           f"session is taken up by a friction effect in time or along the travel; if one of those "
                           f"columns is that load, give it in N (--columns normal_load=<column>) and diagnose again")
     sds, decided = rounds[-1]
@@ -3759,15 +3837,6 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     rebased = not named and s.refit_base
     after = final.pred if (named or rebased) else pred_given_c
     rms_alt = _rms((meas - null.pred)[allm])
-    # what the base refitted alone leaves along the travel that no friction effect holds
-    tf = travel_force(cmp_, meas - null.pred, allm, ripple_min_wavelength(cmp_))
-    if tf is not None and tf.shown:
-        pu, fu = params.units.get("position", ""), params.units.get("force", "")
-        cmp_.notes.append(f"a force along the travel: what the base refitted alone leaves in the sliding holds a "
-                          f"period of {tf.wavelength:.4g} {pu} of amplitude {tf.amplitude:.3g} ± {tf.sd:.2g} {fu} "
-                          f"that keeps its sign whichever way the motion goes (the part following the motion's "
-                          f"sign, as a friction ripple's does, {tf.following:.2g}): cogging, gravity, a spring or a "
-                          f"cable, not a friction effect — no candidate holds it; compensate it apart from friction")
     base_off = bool(not named and rms_alt < (1.0 - CURVE_MIN_GAIN) * rms0 and rms0 > BASE_OFF_NOISE * cmp_.noise)
     if base_off:
         # (a model within two noise floors is at the noise level, whatever a refit gains there)
@@ -4064,22 +4133,39 @@ def _clearly_better(e: "Evidence", o: "Evidence", s: Settings) -> bool:
                 and int(np.sum(e.heldout_sse < o.heldout_sse)) > len(e.heldout_sse) / 2)
 
 
+class Pair(NamedTuple):
+    """Two candidates reported confounded (``choose_winner``): ``e`` the better held out; where
+    ``o`` stood in for ``e``'s part (``stood_in``), what ``o`` gains held out beside ``e``."""
+
+    e: "Evidence"
+    o: "Evidence"
+    stood_in: bool = False
+    beside_gain: float | None = None
+
+
 class Choice(NamedTuple):
     """One round's decision among the passing candidates (``choose_winner``)."""
 
     winner: "Evidence | None"
     beaten: list  # the winner's alike rivals told apart in its favour: gain nothing beside it
     blocked: set  # names out of the running from this round on (confounded, or beaten)
-    confounded: list  # (e, o) pairs reported confounded, in the order found
+    confounded: list  # ``Pair``s reported confounded, in the order found
 
 
-def choose_winner(passing: list, alike, told_apart) -> Choice:
+def choose_winner(passing: list, alike, told_apart, stands_apart=None) -> Choice:
     """The round's winner among ``passing`` (best held out first): the first not blocked that has
     no alike rival left. ``alike(e, o)``: their corrections alike and ``e`` not clearly better;
     ``told_apart(e, o)``: "e" (``o`` gains nothing beside ``e``: beaten, out with ``e`` named),
     "o" (``e`` gains nothing beside ``o``: ``e`` out, ``o`` looked at in its turn), "both" (each
     shows a part of its own: ``e`` may win, ``o`` is looked at again next round) or None (the two
-    are confounded: ``e``, its alike rivals and those it beat are all out, reported in pairs)."""
+    are confounded: ``e``, its alike rivals and those it beat are all out, reported in pairs).
+
+    A candidate that would win after a pair was found confounded this round was judged without
+    the pair's part of the residual, which neither of them took: ``stands_apart(c, e)`` judges it
+    beside the pair's better ``e`` and returns (passes, held-out gain or None). One that does not
+    pass there stood in for that part (a ball screw's load ramp beside a warm-up, confounded,
+    left a ripple of 41 rad, a trend along the travel, to pass) and is reported confounded with
+    ``e``; one that passes wins."""
     blocked: set = set()
     pairs: list = []
     for e in passing:
@@ -4101,24 +4187,39 @@ def choose_winner(passing: list, alike, told_apart) -> Choice:
         if rivals is None:
             continue
         if rivals:
-            pairs.extend((e, o) for o in rivals + beaten)
+            pairs.extend(Pair(e, o) for o in rivals + beaten)
             blocked |= {o.name for o in rivals + beaten} | {e.name}
             continue
+        if stands_apart is not None:
+            leaders = list(dict.fromkeys(p.e for p in pairs if not p.stood_in))
+            judged = [(lead, stands_apart(e, lead)) for lead in leaders]
+            failed = [(lead, gain) for lead, (ok, gain) in judged if not ok]
+            if failed:
+                pairs.extend(Pair(lead, e, True, gain) for lead, gain in failed)
+                blocked |= {e.name} | {o.name for o in beaten}
+                continue
         return Choice(e, beaten, blocked | {o.name for o in beaten}, pairs)
     return Choice(None, [], blocked, pairs)
 
 
-def _confounding(e: "Evidence", o: "Evidence", s: Settings, beside_gain: float | None = None) -> dict:
+def _confounding(e: "Evidence", o: "Evidence", s: Settings, beside_gain: float | None = None,
+                 stood_in: bool = False) -> dict:
     """The report of two candidates confounded: their corrections alike (``correlation``), or
-    ``o`` gaining only ``beside_gain`` held out once ``e`` is in the model."""
+    ``o`` gaining only ``beside_gain`` held out once ``e`` is in the model (None: under the bar
+    in-sample); ``stood_in``: ``o`` passed judged without ``e``'s part, which nothing took."""
     return {"effects": [e.name, o.name], "correlation": _corr(e.correction, o.correction),
-            "gains": [e.heldout_gain, o.heldout_gain], "beside_gain": beside_gain,
+            "gains": [e.heldout_gain, o.heldout_gain], "beside_gain": beside_gain, "stood_in": stood_in,
             "evidence": {e.name: e.as_dict(s), o.name: o.as_dict(s)}, "experiment": separating_experiment(e.name, o.name)}
 
 
 def confounding_reason(c: dict) -> str:
     """Why a pair is reported confounded, in words (the report and its HTML)."""
     a, b = c["effects"]
+    if c.get("stood_in"):
+        beside = ("under the bar in-sample" if c.get("beside_gain") is None
+                  else f"{100 * c['beside_gain']:.1f} % held out, not enough")
+        return (f"{b} passed ({100 * c['gains'][1]:.1f} % held out) judged without {a} ({100 * c['gains'][0]:.1f} %), "
+                f"itself confounded, whose part nothing took; beside {a} it gains {beside}")
     if c.get("beside_gain") is not None:
         return (f"neither gains clearly more held out ({100 * c['gains'][0]:.1f} % vs {100 * c['gains'][1]:.1f} %), "
                 f"and beside {a}, {b} gains {100 * c['beside_gain']:.1f} %")
