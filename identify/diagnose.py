@@ -2759,9 +2759,13 @@ class Diagnosis:
                      f"(cogging, gravity, a spring or a cable; notes).")
         if not self.effects and self.noise > 0 and self.rms_base_refit > BASE_OFF_NOISE * self.noise:
             # nothing named is not "nothing there": the rest the base refitted alone leaves is said
+            seen = bool(self.confounded or self.unsettled or self.unused or self.elsewhere)
             L.append(f"Left unexplained: the base refitted alone still leaves {self.rms_base_refit / self.noise:.1f} × "
-                     f"the noise floor, which no candidate ({', '.join(self.settings.candidates)}) takes up"
-                     + ("; the force along the travel above is part of it" if self.travel_force is not None else "")
+                     f"the noise floor, "
+                     + ("part of which the candidates above, not named, may hold" if seen else
+                        f"which no candidate ({', '.join(self.settings.candidates)}) takes up")
+                     + ("" if self.travel_force is None else "; the force along the travel above is "
+                        + ("taken out of it" if self.settings.travel_force_out else "part of it"))
                      + " (the regimes below say where).")
         for c in self.unused:
             L.append(f"Passed, not named: {c['name']} improved the held-out prediction beside a free steady curve, but "
@@ -4191,7 +4195,10 @@ def choose_winner(passing: list, alike, told_apart, stands_apart=None) -> Choice
             blocked |= {o.name for o in rivals + beaten} | {e.name}
             continue
         if stands_apart is not None:
-            leaders = list(dict.fromkeys(p.e for p in pairs if not p.stood_in))
+            leaders: list = []  # (the pairs' better ones, each once; evidence compares by identity)
+            for p in pairs:
+                if not p.stood_in and all(p.e is not lead for lead in leaders):
+                    leaders.append(p.e)
             judged = [(lead, stands_apart(e, lead)) for lead in leaders]
             failed = [(lead, gain) for lead, (ok, gain) in judged if not ok]
             if failed:

@@ -1157,7 +1157,10 @@ def test_a_set_with_a_load_effect_is_compared_without_it_on_a_recording_without_
 
 # ---------------------------------------------------------------- one round's choice among rivals
 class _Cand:
-    """A passing candidate as ``choose_winner`` sees it: a name (they come best held out first)."""
+    """A passing candidate as ``choose_winner`` sees it: a name (they come best held out first);
+    unhashable, as the evidence (a dataclass compared by value) is."""
+
+    __hash__ = None
 
     def __init__(self, name):
         self.name = name

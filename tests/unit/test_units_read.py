@@ -371,3 +371,15 @@ def test_a_column_named_with_a_leading_minus_is_taken_with_its_sign_turned(tmp_p
     kept = load_recording(str(path), columns=parse_column_mapping("force=F_coil"))
     np.testing.assert_allclose(kept.force, f, rtol=1e-12)
     assert not any("sign turned" in n for n in kept.notes)
+
+
+def test_a_column_whose_unit_is_of_another_kind_is_not_offered_as_a_normal_load():
+    from leuven_friction.identify.data import may_be_load
+
+    # a load presses the contact: a force or a moment, or a unit read nowhere here (a clamp's bar,
+    # a strain gauge's V, a payload's kg, which the hint then tells how to give in N)
+    for column in ("axial load [kN]", "Fn", "tilting moment [kN*m]", "clamp [bar]", "strain [V]", "payload [kg]"):
+        assert may_be_load(column), column
+    # a temperature, a time or a length is no load
+    for column in ("winding_temp[degC]", "t_oil [°C]", "housing [K]", "t [ms]", "pos [mm]", "angle [deg]"):
+        assert not may_be_load(column), column
