@@ -121,7 +121,7 @@ def unit_of(unit: str, sig: str) -> tuple[float, str] | None:
     or friction column is newton-metre, not nanometre; a torque may be written as a product in
     any of the usual ways (N·m, N*m, N.m, mN·m, N·mm, Nmm), a speed as a quotient (mm/s)."""
     key = unit.strip().lower()
-    if key.replace(" ", "") == "nm" and sig in ("force", "friction"):
+    if key.replace(" ", "") == "nm" and sig in ("force", "friction", "normal_load"):
         return UNITS["nm_torque"]
     if key.replace(" ", "") in UNITS:
         return UNITS[key.replace(" ", "")]

@@ -2722,7 +2722,10 @@ class Diagnosis:
             "reading": dict(self.reading),
             "settings": {"folds": self.settings.folds, "blocks": self.settings.folds * self.settings.blocks_per_fold,
                          "min_gain": self.settings.min_gain, "confound_corr": self.settings.confound_corr,
-                         "must_settle": self.settings.must_settle, "reading": dict(self.settings.reading)},
+                         "must_settle": self.settings.must_settle, "reading": dict(self.settings.reading),
+                         # (taken out, the force along the travel is out of ``measured`` and every gap)
+                         "travel_force_out": self.settings.travel_force_out,
+                         "beside_confounded": self.settings.beside_confounded},
         }
 
     def text(self) -> str:
@@ -3398,14 +3401,16 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"that keeps its sign whichever way the motion goes (the part following the motion's "
                           f"sign, as a friction ripple's does, {tf.following:.2g}): cogging, gravity, a spring or a "
                           f"cable, not a friction effect — no candidate holds it; compensate it apart from friction"
-                          + ("; it is taken out of the friction compared (every gap and figure here) before the "
-                             "candidates are judged, so that none is credited with the part of it a friction "
+                          + ("; it is taken out of the friction compared before the candidates are judged (every "
+                             "gap here and the figures are without it; the refit of n, σ1, S(v) and the curve "
+                             "before it saw it in), so that none is credited with the part of it a friction "
                              "effect can fit" if out else ""))
         if out:
             # a ball screw's cogging of period π rad, left in, was named a friction ripple of 3.3 rad
             # that took 10 % of the gap: a ripple follows the motion's sign and fits a part of any
-            # such force. In place: the engine and every gap read ``cmp_.measured``
-            meas -= tf.along(cmp_)
+            # such force. A new array, not in place: ``measured`` may be the recording's own friction
+            # column; the engine and every gap read ``cmp_.measured``
+            meas = cmp_.measured = meas - tf.along(cmp_)
             pred_given_c = pred_given + model_nuisance(meas - pred_given, allm, cmp_.memory_offset,
                                                        cmp_.acceleration).correction
             rms0 = _rms((meas - pred_given_c)[allm])
@@ -4167,8 +4172,8 @@ def choose_winner(passing: list, alike, told_apart, stands_apart=None) -> Choice
     A candidate that would win after a pair was found confounded this round was judged without
     the pair's part of the residual, which neither of them took: ``stands_apart(c, e)`` judges it
     beside the pair's better ``e`` and returns (passes, held-out gain or None). One that does not
-    pass there stood in for that part (a ball screw's load ramp beside a warm-up, confounded,
-    left a ripple of 41 rad, a trend along the travel, to pass) and is reported confounded with
+    pass there stood in for that part (a ball screw's load ramp, confounded with a drift, left a
+    ripple of 41 rad, a trend along the travel, to pass) and is reported confounded with
     ``e``; one that passes wins."""
     blocked: set = set()
     pairs: list = []
@@ -4202,8 +4207,9 @@ def choose_winner(passing: list, alike, told_apart, stands_apart=None) -> Choice
             judged = [(lead, stands_apart(e, lead)) for lead in leaders]
             failed = [(lead, gain) for lead, (ok, gain) in judged if not ok]
             if failed:
+                # (those it beat were out only with it named: each is looked at in its own turn)
                 pairs.extend(Pair(lead, e, True, gain) for lead, gain in failed)
-                blocked |= {e.name} | {o.name for o in beaten}
+                blocked.add(e.name)
                 continue
         return Choice(e, beaten, blocked | {o.name for o in beaten}, pairs)
     return Choice(None, [], blocked, pairs)

@@ -1236,6 +1236,16 @@ def test_a_third_candidate_after_a_confounded_pair_is_named_only_if_it_passes_be
         "ripple", [], ["drift", "load"], [("load", "drift")], [("load", "drift"), ("beside", "ripple", "load")])
 
 
+def test_a_candidate_standing_in_for_a_confounded_pair_leaves_those_it_beat_to_their_own_turn():
+    # load and drift confounded; the ripple beat the softening (alike) but stood in for the load's
+    # part: the softening, out only with the ripple named, is judged in its turn beside the load
+    assert _choose(["load", "drift", "ripple", "softening"], [("load", "drift"), ("ripple", "softening")],
+                   {("ripple", "softening"): "e"},
+                   {("ripple", "load"): (False, 0.004), ("softening", "load"): (True, 0.05)}) == (
+        "softening", [], ["drift", "load", "ripple"], [("load", "drift"), ("load", "ripple", 0.004)],
+        [("load", "drift"), ("ripple", "softening"), ("beside", "ripple", "load"), ("beside", "softening", "load")])
+
+
 def test_without_a_confounded_pair_the_winner_is_not_judged_again():
     # nothing confounded this round: no candidate is asked beside another (``beside`` has no entry)
     assert _choose(["drift", "load", "ripple"], [("drift", "load")], {("drift", "load"): "e"}, {}) == (

@@ -378,7 +378,8 @@ def test_a_column_whose_unit_is_of_another_kind_is_not_offered_as_a_normal_load(
 
     # a load presses the contact: a force or a moment, or a unit read nowhere here (a clamp's bar,
     # a strain gauge's V, a payload's kg, which the hint then tells how to give in N)
-    for column in ("axial load [kN]", "Fn", "tilting moment [kN*m]", "clamp [bar]", "strain [V]", "payload [kg]"):
+    for column in ("axial load [kN]", "Fn", "tilting moment [kN*m]", "bending moment [Nm]", "clamp [bar]",
+                   "strain [V]", "payload [kg]"):
         assert may_be_load(column), column
     # a temperature, a time or a length is no load
     for column in ("winding_temp[degC]", "t_oil [°C]", "housing [K]", "t [ms]", "pos [mm]", "angle [deg]"):
