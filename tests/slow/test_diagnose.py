@@ -632,7 +632,12 @@ def test_a_force_along_the_travel_is_told_from_a_friction_ripple_by_its_sign(how
     wave = np.sin(2 * np.pi * x / lam + 0.4)
     f = df["Friction [uN]"].to_numpy()
     df["Friction [uN]"] = f + amp * wave if how == "added" else f * (1 + 0.03 * wave) if how == "scaled" else f
-    d = diagnose(to_recording(df, f"{how}.csv"), oracle_params(truth))
+    rec = to_recording(df, f"{how}.csv")
+    before = np.array(rec.friction, copy=True)
+    rec.friction.setflags(write=False)  # as a column read from a file is
+    d = diagnose(rec, oracle_params(truth))
+    # taken out of the friction compared, the force is not taken out of the recording's column
+    np.testing.assert_array_equal(rec.friction, before)
     tf = d.travel_force
     if how == "added":
         assert tf is not None and "position_ripple" not in d.effects, (d.effects, d.text())
