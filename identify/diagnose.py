@@ -3495,6 +3495,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # the last winner, the rivals it did not clearly beat, the state before it was named, and the
     # alike rivals told apart in its favour
     pending = None
+    carried: tuple = ()  # a round taken back: the better ones of the pairs it had found confounded
     for _ in range(2 * s.max_effects):  # a round taken back (below) excludes two candidates or more
         step = len(named)
         if step >= s.max_effects:
@@ -3579,7 +3580,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             # after all (a linear stage's drift on a sweep in rising speeds: a softening won by
             # 4.51 % to 4.49 % held out, and the drift, 19 % better in the steady sliding alone,
             # gained 0.2 % beside it). Both are reported confounded and the round is taken back.
-            last, alike, before, beaten = pending
+            last, alike, before, beaten, leaders = pending
             pending = None
             subsumed = [(o, now) for o in alike for now in evid if now.name == o.name and not now.gains_held_out(s)]
             if subsumed:
@@ -3592,6 +3593,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 named.pop()
                 del steps[before.steps:], scored[before.scored:], fits[before.fits:], rounds[before.rounds:]
                 del cmp_.notes[before.notes:]
+                # the round is run again from the same model, its confounded pairs out of the running
+                # and not found again: a winner there is judged beside their better ones all the same
+                carried = leaders
                 continue
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         cands_out = [e.as_dict(s) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
@@ -3661,7 +3665,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         notes_before = len(cmp_.notes)  # (a round taken back takes the notes of its telling apart too)
         choice = choose_winner(
             passing, lambda e, o: _corr(e.correction, o.correction) >= s.confound_corr and not _clearly_better(e, o, s),
-            told_apart if s.tell_apart else (lambda e, o: None), stands_apart if s.beside_confounded else None)
+            told_apart if s.tell_apart else (lambda e, o: None), stands_apart if s.beside_confounded else None,
+            carried)
         confounded.extend(_confounding(p.e, p.o, s, p.beside_gain, p.stood_in) for p in choice.confounded)
         winner, beaten, blocked = choice.winner, choice.beaten, choice.blocked
         excluded |= blocked
@@ -3673,7 +3678,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # again beside it in the next round
         alike = [o for o in passing if o is not winner and o.name not in blocked and not _clearly_better(winner, o, s)]
         pending = (winner, alike, _LoopState(cur, list(cur_terms), cur_u, k0, len(steps), len(scored), len(fits),
-                                             len(rounds), notes_before), beaten) if alike else None
+                                             len(rounds), notes_before), beaten,
+                   tuple(confounded_leaders(choice.confounded, carried))) if alike else None
+        carried = ()
         named.append(winner.name)
         # σ of every named effect's parameters from this round's cross-validation, where they were
         # all refitted with the winner; the last round's go into the file written
@@ -4161,7 +4168,7 @@ class Choice(NamedTuple):
     confounded: list  # ``Pair``s reported confounded, in the order found
 
 
-def choose_winner(passing: list, alike, told_apart, stands_apart=None) -> Choice:
+def choose_winner(passing: list, alike, told_apart, stands_apart=None, confounded_before: tuple = ()) -> Choice:
     """The round's winner among ``passing`` (best held out first): the first not blocked that has
     no alike rival left. ``alike(e, o)``: their corrections alike and ``e`` not clearly better;
     ``told_apart(e, o)``: "e" (``o`` gains nothing beside ``e``: beaten, out with ``e`` named),
@@ -4174,7 +4181,9 @@ def choose_winner(passing: list, alike, told_apart, stands_apart=None) -> Choice
     beside the pair's better ``e`` and returns (passes, held-out gain or None). One that does not
     pass there stood in for that part (a ball screw's load ramp, confounded with a drift, left a
     ripple of 41 rad, a trend along the travel, to pass) and is reported confounded with
-    ``e``; one that passes wins."""
+    ``e``; one that passes wins. ``confounded_before``: the better ones of the pairs confounded
+    when this round was run before, from the same model, and then taken back (out of the running
+    now, and not found again): a winner is judged beside them too."""
     blocked: set = set()
     pairs: list = []
     for e in passing:
@@ -4200,10 +4209,7 @@ def choose_winner(passing: list, alike, told_apart, stands_apart=None) -> Choice
             blocked |= {o.name for o in rivals + beaten} | {e.name}
             continue
         if stands_apart is not None:
-            leaders: list = []  # (the pairs' better ones, each once; evidence compares by identity)
-            for p in pairs:
-                if not p.stood_in and all(p.e is not lead for lead in leaders):
-                    leaders.append(p.e)
+            leaders = confounded_leaders(pairs, confounded_before)
             judged = [(lead, stands_apart(e, lead)) for lead in leaders]
             failed = [(lead, gain) for lead, (ok, gain) in judged if not ok]
             if failed:
@@ -4213,6 +4219,16 @@ def choose_winner(passing: list, alike, told_apart, stands_apart=None) -> Choice
                 continue
         return Choice(e, beaten, blocked | {o.name for o in beaten}, pairs)
     return Choice(None, [], blocked, pairs)
+
+
+def confounded_leaders(pairs: list, before: tuple = ()) -> list:
+    """The better ones of the confounded ``pairs`` that did not stand in (``Pair``), after those
+    of ``before``, each once (evidence compares by identity, not by value)."""
+    leaders: list = []
+    for lead in [*before, *(p.e for p in pairs if not p.stood_in)]:
+        if all(lead is not other for other in leaders):
+            leaders.append(lead)
+    return leaders
 
 
 def _confounding(e: "Evidence", o: "Evidence", s: Settings, beside_gain: float | None = None,
