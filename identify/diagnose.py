@@ -1801,17 +1801,38 @@ INERTIA_ABSENT = 0.05  # friction following the acceleration as if I were under 
 BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
 
 
-def base_off_verdict(rms_base_refit: float, noise: float, candidates) -> str:
+def base_off_verdict(rms_base_refit: float, noise: float, candidates, seen: bool = False) -> str:
     """What is said of a base that is off with nothing named (``Diagnosis.base_off``). Where the
     base refitted alone comes within BASE_OFF_NOISE noise floors, the base, not a missing effect,
-    is what is off. Where it still leaves more, that rest is neither: no candidate took it up, and
-    a time variation or a force the library has no candidate for (a friction cycling with the
-    temperature, gravity on a joint) would leave the same."""
+    is what is off. Where it still leaves more, that rest is neither: no candidate was named for
+    it, and a time variation or a force the library has no candidate for (a friction cycling with
+    the temperature, gravity on a joint) would leave the same. ``seen``: candidates were seen and
+    not named (confounded, not settling, not where they must show, not used): part of that rest
+    may be theirs (a ball screw's load ramp, confounded with a drift, took 75 % of it held out)."""
     if noise > 0 and rms_base_refit > BASE_OFF_NOISE * noise:
-        return (f"the base is off, and what it leaves refitted alone ({rms_base_refit / noise:.1f} × the noise floor) "
-                f"no candidate takes up: a contact this model's base cannot follow, or an effect outside the "
-                f"candidates ({', '.join(candidates)})")
+        rest = f"what it leaves refitted alone ({rms_base_refit / noise:.1f} × the noise floor)"
+        if seen:
+            return (f"the base is off, and no candidate is named for {rest}, though the candidates seen and not named "
+                    f"(above) may hold part of it: they, a contact this model's base cannot follow, or an effect "
+                    f"outside the candidates ({', '.join(candidates)})")
+        return (f"the base is off, and {rest} no candidate takes up: a contact this model's base cannot follow, or "
+                f"an effect outside the candidates ({', '.join(candidates)})")
     return "the base, not a missing effect, is what is off"
+
+
+def unsettled_among(candidates: list, s: "Settings") -> list:
+    """With ``Settings.must_settle`` (the default): the candidates (``Evidence.as_dict``) with
+    held-out evidence that were not named because their change is not seen to settle within
+    the session (``Term.unsettled``)."""
+    if not s.must_settle:
+        return []  # such a candidate is named, with that caveat in the notes
+    return [c for c in candidates if c.get("unsettled") and c.get("evident")]
+
+
+def elsewhere_among(candidates: list) -> list:
+    """The candidates (``Evidence.as_dict``) that gain held out, but not where their physics
+    must show (``Evidence.elsewhere``), and were not named."""
+    return [c for c in candidates if c.get("elsewhere") and not c.get("significant")]
 
 
 def _at_range_end(x: float, ends) -> bool:
@@ -2644,9 +2665,7 @@ class Diagnosis:
         """With ``Settings.must_settle`` (the default): the last round's candidates with held-out
         evidence that were not named because their change is not seen to settle within the
         session (``Term.unsettled``)."""
-        if not self.settings.must_settle:
-            return []  # such a candidate is named, with that caveat in the notes
-        return [c for c in self.candidates if c.get("unsettled") and c.get("evident")]
+        return unsettled_among(self.candidates, self.settings)
 
     def not_where_it_shows(self, c: dict) -> str:
         """Why a candidate of ``elsewhere`` is not named, in words (the text report and the HTML)."""
@@ -2662,7 +2681,7 @@ class Diagnosis:
     def elsewhere(self) -> list:
         """The last round's candidates that gain held out, but not where their physics must show
         (``Evidence.elsewhere``): not named, and said."""
-        return [c for c in self.candidates if c.get("elsewhere") and not c.get("significant")]
+        return elsewhere_among(self.candidates)
 
     def seen_not_named(self) -> list:
         """[(candidate, why it is not named)] of the last round's candidates the evidence shows
@@ -2670,6 +2689,11 @@ class Diagnosis:
         the HTML list the same ones for the same reasons."""
         return ([(c, c["unsettled"]) for c in self.unsettled]
                 + [(c, self.not_where_it_shows(c)) for c in self.elsewhere])
+
+    def seen_unnamed(self) -> bool:
+        """Whether any candidate was seen and not named: confounded, not settling, not where it
+        must show, or not used by the model written (``base_off_verdict``'s ``seen``)."""
+        return bool(self.confounded or self.unsettled or self.unused or self.elsewhere)
 
     def not_named(self) -> list:
         """What the evidence shows but the diagnosis does not name, one short line each: an
@@ -2762,10 +2786,9 @@ class Diagnosis:
                      f"(cogging, gravity, a spring or a cable; notes).")
         if not self.effects and self.noise > 0 and self.rms_base_refit > BASE_OFF_NOISE * self.noise:
             # nothing named is not "nothing there": the rest the base refitted alone leaves is said
-            seen = bool(self.confounded or self.unsettled or self.unused or self.elsewhere)
             L.append(f"Left unexplained: the base refitted alone still leaves {self.rms_base_refit / self.noise:.1f} × "
                      f"the noise floor, "
-                     + ("part of which the candidates above, not named, may hold" if seen else
+                     + ("part of which the candidates above, not named, may hold" if self.seen_unnamed() else
                         f"which no candidate ({', '.join(self.settings.candidates)}) takes up")
                      + ("" if self.travel_force is None else "; the force along the travel above is "
                         + ("taken out of it" if self.settings.travel_force_out else "part of it"))
@@ -3865,7 +3888,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         fitted_here = made_by is not None
         cmp_.notes.append(f"nothing named, so the model written is the one given, which leaves {rms0:.4g}; the "
                           f"base refitted alone (the alternative) leaves {rms_alt:.4g} — "
-                          + base_off_verdict(rms_alt, cmp_.noise, s.candidates) + ": "
+                          + base_off_verdict(rms_alt, cmp_.noise, s.candidates,
+                                             seen=bool(confounded or unused or unsettled_among(cands_out, s)
+                                                       or elsewhere_among(cands_out))) + ": "
                           + (f"the {made_by} of {name} that made the file holds or misses what the refit moves "
                              f"(see its held parameters, and the refit's values above)" if fitted_here else
                              "fit it to this recording (`leuven-friction fit`) or give --params closer to it")

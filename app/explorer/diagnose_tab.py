@@ -186,7 +186,7 @@ def status_line(d) -> str:
         return f"Found **{', '.join(d.named_labels())}**: see the proposal." + (f" Also: {'; '.join(others)}." if others else "")
     gap = (f"the model leaves {d.rms_before:.3g}, {d.rms_before / d.noise:.1f} × the noise floor" if d.noise > 0
            else f"the model leaves {d.rms_before:.3g}")
-    base = (f"; {base_off_verdict(d.rms_base_refit, d.noise, d.settings.candidates)} (refitted alone it leaves "
+    base = (f"; {base_off_verdict(d.rms_base_refit, d.noise, d.settings.candidates, d.seen_unnamed())} (refitted alone it leaves "
             f"{d.rms_base_refit:.3g}): fit it to this recording" if d.base_off else "")
     if others:
         return f"Nothing named: {'; '.join(others)}. {gap[0].upper()}{gap[1:]}{base} (the Diagnose tab has the evidence)."
