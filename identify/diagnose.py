@@ -1820,6 +1820,16 @@ def base_off_verdict(rms_base_refit: float, noise: float, candidates, seen: bool
     return "the base, not a missing effect, is what is off"
 
 
+def size_not_shown(name: str, values: dict, sd: dict) -> str | None:
+    """Why every amplitude of the effect ``name`` (``EffectParam.shape_of``'s: a drift's b, a
+    ripple's a and a2) is not told from none at ``values`` ± ``sd``, or None (one shows, or the
+    effect has no such amplitude)."""
+    eff = EFFECTS[name]
+    amplitudes = sorted({a for p in eff.params for a in p.shape_of})
+    weak = [why for a in amplitudes if (why := eff.amplitude_not_shown(a, values, sd))]
+    return "; ".join(weak) if amplitudes and len(weak) == len(amplitudes) else None
+
+
 def unsettled_among(candidates: list, s: "Settings") -> list:
     """With ``Settings.must_settle`` (the default): the candidates (``Evidence.as_dict``) with
     held-out evidence that were not named because their change is not seen to settle within
@@ -1963,6 +1973,65 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
     g, kk, p, entries = unpack(sol.x)
     engine.set_base(p)
     return TransitionRefit(p, g, kk, entries, sol.x)
+
+
+@dataclass(frozen=True)
+class BaseRefit:
+    """The base refitted alone (``refit_base``): what every candidate must beat."""
+
+    alone: TransitionRefit  # as the model alone: its memory's constant and the inertia free, no free steady curve
+    refit_curve: bool  # whether the transition curve's segments were reshaped (CURVE_MIN_GAIN)
+    refit: TransitionRefit  # then beside the free steady curve, as the decision compares
+    null: FitResult  # the level and stiffness, and the file's own effects, refitted beside it
+    curve_note: str | None  # what the reshaping of the curve gave, for the notes
+
+
+def refit_base(engine: Engine, base_params: FrictionParams, prior_terms: list, prior_u: np.ndarray,
+               allm: np.ndarray, may_refit_curve: bool) -> BaseRefit:
+    """n, σ1, the levels of S(v) (and, where that pays clearly, the transition curve's segments)
+    refitted to the friction the engine compares (``engine.c.measured``), with the file's own
+    effects ``prior_terms`` at ``prior_u``; the engine's base is left at the refit."""
+    cmp_ = engine.c
+    meas = cmp_.measured
+    # first as the model alone (its memory's constant and inertia free, as the model written), then
+    # beside the free steady curve from there: a curve the fit left far off (a segment of the
+    # stiffness of a jump) would otherwise stay where the free curve's flat valley holds it
+    free = engine.free
+    engine.free, engine.free_inertia = None, True
+    note = None
+    try:
+        alone = refit_transition(engine, base_params, prior_terms, prior_u, allm)
+        nc = refit_length(base_params, True) - REFIT_BASE_U if may_refit_curve and base_params.model == "leuven" else 0
+        refit_curve = False
+        if nc:
+            # the curve's segments are reshaped only where that pays clearly (CURVE_MIN_GAIN): a
+            # curve that already fits stays as the file has it, so the decision is not moved by a
+            # reshaping the data do not ask for
+            shaped = refit_transition(engine, base_params, prior_terms, prior_u, allm, refit_curve=True,
+                                      start=np.concatenate([alone.u[:REFIT_BASE_U], np.zeros(nc),
+                                                            alone.u[REFIT_BASE_U:]]), max_nfev=REFIT_NFEV_FROM)
+            gaps = []
+            for r in (alone, shaped):
+                engine.set_base(r.params)
+                gaps.append(_rms((meas - fit_result(engine, r.g, r.k0, r.entries, r.u, allm).pred)[allm]))
+            gap_plain, gap_shaped = gaps
+            refit_curve = gap_shaped < (1.0 - CURVE_MIN_GAIN) * gap_plain
+            note = (f"the transition curve's segments refitted to the whole record: the model alone leaves "
+                    f"{gap_shaped:.3g} against {gap_plain:.3g} with the file's shape — "
+                    + ("kept" if refit_curve else f"under {CURVE_MIN_GAIN:.0%} less, the file's shape kept"))
+            if refit_curve:
+                alone = shaped
+    finally:
+        engine.free, engine.free_inertia = free, False
+    # then beside the free steady curve, as the decision compares (without it, with the inertia held)
+    base_refit = refit_transition(engine, base_params, prior_terms, prior_u, allm, start=alone.u,
+                                  refit_curve=refit_curve, max_nfev=REFIT_NFEV_FROM)
+    # the level and stiffness start where the base's refit left them (κ0 and the curve's
+    # segments were fitted together: from κ0 = 1 the reshaped curve would start off its basin)
+    refit_prior_u = base_refit.u[len(base_refit.u) - len(prior_u):] if len(base_refit.u) else prior_u
+    null = _fit(engine, prior_terms, np.concatenate([[math.log(base_refit.g), math.log(base_refit.k0)], refit_prior_u]),
+                allm, fit_k0=True, k0=1.0)
+    return BaseRefit(alone, refit_curve, base_refit, null, note)
 
 
 # ---------------------------------------------------------------- screening a candidate's shape
@@ -2834,8 +2903,9 @@ class Diagnosis:
             L.append(f"  {k:22s} n={r['n']:7d}  {r['rms_before']:.4g} → {r['rms_base_refit']:.4g} → {r['rms_after']:.4g}"
                      + tail)
         L.append(f"Candidates, last round (blocked CV: {self.settings.folds} folds of "
-                 f"{self.settings.blocks_per_fold} contiguous blocks; named if better held out in most informative "
-                 f"folds and ≥ {100 * self.settings.min_gain:.0f} % pooled"
+                 f"{self.settings.blocks_per_fold} contiguous blocks; each RMS change is the candidate's against the "
+                 f"alternative, − where it falls (better), + where it rises; named if better held out in most "
+                 f"informative folds and ≥ {100 * self.settings.min_gain:.0f} % pooled"
                  + ("; settling required: one whose change is not seen to settle within the session is seen, not named"
                     if self.settings.must_settle else "") + "):")
         for c in self.candidates:
@@ -3376,46 +3446,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             tm = dataclasses.replace(tm, fixed={k: e["params"][k] for k in tm.fixed})
             prior_terms.append(tm)
             prior_u = np.concatenate([prior_u, _entry_to_u(tm, e["params"])])
-    # first as the model alone (its memory's constant and inertia free, as the model written), then
-    # beside the free steady curve from there: a curve the fit left far off (a segment of the
-    # stiffness of a jump) would otherwise stay where the free curve's flat valley holds it
-    free = engine.free
-    engine.free, engine.free_inertia = None, True
-    try:
-        alone = refit_transition(engine, base_params, prior_terms, prior_u, allm)
-        nc = refit_length(base_params, True) - REFIT_BASE_U if s.refit_curve and base_params.model == "leuven" else 0
-        refit_curve = False
-        if nc:
-            # the curve's segments are reshaped only where that pays clearly (CURVE_MIN_GAIN): a
-            # curve that already fits stays as the file has it, so the decision is not moved by a
-            # reshaping the data do not ask for
-            shaped = refit_transition(engine, base_params, prior_terms, prior_u, allm, refit_curve=True,
-                                      start=np.concatenate([alone.u[:REFIT_BASE_U], np.zeros(nc),
-                                                            alone.u[REFIT_BASE_U:]]), max_nfev=REFIT_NFEV_FROM)
-            gaps = []
-            for r in (alone, shaped):
-                engine.set_base(r.params)
-                gaps.append(_rms((meas - fit_result(engine, r.g, r.k0, r.entries, r.u, allm).pred)[allm]))
-            gap_plain, gap_shaped = gaps
-            refit_curve = gap_shaped < (1.0 - CURVE_MIN_GAIN) * gap_plain
-            cmp_.notes.append(f"the transition curve's segments refitted to the whole record: the model alone leaves "
-                              f"{gap_shaped:.3g} against {gap_plain:.3g} with the file's shape — "
-                              + ("kept" if refit_curve else f"under {CURVE_MIN_GAIN:.0%} less, the file's shape kept"))
-            if refit_curve:
-                alone = shaped
-    finally:
-        engine.free, engine.free_inertia = free, False
-    # then beside the free steady curve, as the decision compares (without it, with the inertia held)
-    base_refit = refit_transition(engine, base_params, prior_terms, prior_u, allm, start=alone.u,
-                                  refit_curve=refit_curve, max_nfev=REFIT_NFEV_FROM)
-    base_params = base_refit.params
-    # the level and stiffness start where the base's refit left them (κ0 and the curve's
-    # segments were fitted together: from κ0 = 1 the reshaped curve would start off its basin)
-    refit_prior_u = base_refit.u[len(base_refit.u) - len(prior_u):] if len(base_refit.u) else prior_u
-    null = _fit(engine, prior_terms, np.concatenate([[math.log(base_refit.g), math.log(base_refit.k0)], refit_prior_u]),
-                allm, fit_k0=True, k0=1.0)
+    base = refit_base(engine, base_params, prior_terms, prior_u, allm, s.refit_curve)
     # what the base refitted alone leaves along the travel that no friction effect holds
-    tf = travel_force(cmp_, meas - null.pred, allm, ripple_min_wavelength(cmp_))
+    tf = travel_force(cmp_, meas - base.null.pred, allm, ripple_min_wavelength(cmp_))
     if tf is not None and tf.shown:
         pu, fu = params.units.get("position", ""), params.units.get("force", "")
         out = s.travel_force_out
@@ -3424,9 +3457,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"that keeps its sign whichever way the motion goes (the part following the motion's "
                           f"sign, as a friction ripple's does, {tf.following:.2g}): cogging, gravity, a spring or a "
                           f"cable, not a friction effect — no candidate holds it; compensate it apart from friction"
-                          + ("; it is taken out of the friction compared before the candidates are judged (every "
-                             "gap here and the figures are without it; the refit of n, σ1, S(v) and the curve "
-                             "before it saw it in), so that none is credited with the part of it a friction "
+                          + ("; it is taken out of the friction compared, and the base (n, σ1, S(v), the curve) "
+                             "refitted again without it, before the candidates are judged (every gap here and the "
+                             "figures are without it), so that none is credited with the part of it a friction "
                              "effect can fit" if out else ""))
         if out:
             # a ball screw's cogging of period π rad, left in, was named a friction ripple of 3.3 rad
@@ -3437,7 +3470,13 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             pred_given_c = pred_given + model_nuisance(meas - pred_given, allm, cmp_.memory_offset,
                                                        cmp_.acceleration).correction
             rms0 = _rms((meas - pred_given_c)[allm])
-            null = _fit(engine, prior_terms, null.u, allm, fit_k0=True, k0=1.0)
+            # the base as if the force had not been there: refitted with it in, its S(v) and curve
+            # leaned on the force's part a friction level can hold
+            base = refit_base(engine, base_params, prior_terms, prior_u, allm, s.refit_curve)
+    if base.curve_note:
+        cmp_.notes.append(base.curve_note)
+    alone, refit_curve, base_refit, null = base.alone, base.refit_curve, base.refit, base.null
+    base_params = base_refit.params
     k0 = null.k0
     # the file's own effects, refitted here with the base: one that does next to nothing on this
     # recording is said (a set diagnosed on another recording carries what this one may not show;
@@ -3925,6 +3964,14 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                  for k, why in EFFECTS[e["name"]].undetermined(e["params"], sd).items()}
         unc.update({f"effects.{i}.params.{k}": v for i, sd in enumerate(written_sd) for k, v in sd.items()
                     if math.isfinite(v) and f"effects.{i}.params.{k}" not in loose})
+        for e, sd in zip(final.entries, written_sd):
+            weak = size_not_shown(e["name"], e["params"], sd) if e["name"] in named else None
+            if weak:
+                # named on held-out evidence, which is of the change's presence, not of its size (a
+                # stage's warm-up that came and went, fitted as one approach: b −0.25 ± 0.14)
+                cmp_.notes.append(f"{e['name']} is named on its held-out evidence, but in the model written (n, σ1 and "
+                                  f"S(v) refitted with it) its size is not told from none ({weak}; σ from the spread "
+                                  f"over the folds): a change is seen, its size and how fast it comes are not pinned down")
         prov = dict(params.provenance)
         # (the bounds a diagnosis says, below, are said again by this one or not at all)
         held_before = {k: v for k, v in (prov.get("held") or {}).items()

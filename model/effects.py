@@ -156,6 +156,11 @@ class Context:
         return _kept(self._phase, key, PHASES_KEPT, 2 * self.time.size, make)
 
 
+def _sigmas(d: float, s: float) -> str:
+    """|d| in units of s, as said: "1.8 σ"."""
+    return f"{d / s:.2g} σ" if s > 0 else "∞ σ"
+
+
 SHAPE_SIGMAS = 2.0  # an amplitude within this many σ of no effect leaves its shape parameters undetermined
 POLAR_SHOWN = 2.45  # … a magnitude within this many σ of its parts (√ of χ²₂'s 95 % point, 5.99)
 PHASES_KEPT = 3  # wavelengths whose sines a context keeps
@@ -252,10 +257,12 @@ class Effect:
         sp = sd.get(p.polar_with) if p.polar_with else None
         if sp is not None and math.isfinite(sp):
             sc = math.sqrt((s * s + (x * sp) ** 2) / 2.0)
-            return (f"{name} = {x:.2g} is within {POLAR_SHOWN:g} σ of 0 (σ {sc:.2g} of its sine and cosine parts, from "
-                    f"± {s:.2g} and its phase's ± {sp:.2g})") if d <= POLAR_SHOWN * sc else None
-        return (f"{name} = {x:.2g} ± {s:.2g} is within {SHAPE_SIGMAS:g} σ of {self.neutral.get(name, 0.0):g}"
-                if d <= SHAPE_SIGMAS * s else None)
+            # the σ counted as measured, then the bar it misses ("within 2.45 σ" alone read as the measure)
+            return (f"{name} = {x:.2g} is {_sigmas(d, sc)} from 0, within the {POLAR_SHOWN:g} σ a magnitude must pass "
+                    f"(σ {sc:.2g} of its sine and cosine parts, from ± {s:.2g} and its phase's ± {sp:.2g})"
+                    if d <= POLAR_SHOWN * sc else None)
+        return (f"{name} = {x:.2g} ± {s:.2g} is {_sigmas(d, s)} from {self.neutral.get(name, 0.0):g}, within "
+                f"{SHAPE_SIGMAS:g} σ" if d <= SHAPE_SIGMAS * s else None)
 
     def validate(self, values, path: str) -> dict:
         if not isinstance(values, Mapping):

@@ -1328,3 +1328,16 @@ def test_a_base_off_with_candidates_seen_does_not_say_no_candidate_takes_its_res
     # within two noise floors the base alone is off, seen or not
     assert base_off_verdict(0.015, 0.01, names, seen=True) == base_off_verdict(0.015, 0.01, names) == (
         "the base, not a missing effect, is what is off")
+
+
+def test_a_named_effect_whose_size_is_not_told_from_none_is_said_so():
+    from leuven_friction.identify.diagnose import size_not_shown
+    # a drift's b at 1.8 σ from none: said, with the σ counted; at 5 σ it is not
+    assert "b = -0.25 ± 0.14 is 1.8 σ from 0" in size_not_shown("time_drift", {"b": -0.25, "tau": 60.0, "t0": 0.0},
+                                                               {"b": 0.14, "tau": 40.0})
+    assert size_not_shown("time_drift", {"b": -0.25, "tau": 60.0, "t0": 0.0}, {"b": 0.05, "tau": 10.0}) is None
+    # a ripple whose fundamental shows and whose second harmonic does not: its size is shown
+    ripple = {"a": 0.06, "wavelength": 0.0113, "phase": 1.0, "a2": 0.0007, "phase2": 0.2, "x0": 0.0}
+    assert size_not_shown("position_ripple", ripple, {"a": 0.005, "phase": 0.02, "a2": 0.0012, "phase2": 2.0}) is None
+    # a load's exponent has no amplitude of that kind (α = 0 is a level, not no effect's shape)
+    assert size_not_shown("normal_load", {"alpha": 0.1, "N0": 500.0}, {"alpha": 0.2}) is None

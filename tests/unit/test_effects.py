@@ -270,7 +270,13 @@ def test_a_shape_whose_amplitude_is_within_two_sigma_of_none_is_said_not_determi
     assert set(EFFECTS["position_ripple"].undetermined(ripple, sd)) == {"phase2"}
     txt = format_values("position_ripple", ripple, {"position": "rad"}, sd)
     assert "phase = 2.38 ± 0.057 rad" in txt
-    assert "phase2 = 1.14 rad (not determined: a2 = 0.0055 is within 2.45 σ of 0 (σ 0.011 of its" in txt
+    # (the σ counted, 0.0055/0.01067, then the bar it misses)
+    assert "phase2 = 1.14 rad (not determined: a2 = 0.0055 is 0.52 σ from 0, within the 2.45 σ a magnitude must " \
+           "pass (σ 0.011 of its" in txt, txt
+    # a drift's b = −0.25 ± 0.14 (a warm-up that came and went, fitted as one approach) is 1.8 σ
+    # from none: its τ is not determined, said with the σ counted
+    txt = format_values("time_drift", {"t0": 24.86, "b": -0.2496, "tau": 61.77}, {"time": "s"}, {"b": 0.14, "tau": 40.0})
+    assert "tau = 61.77 s (not determined: b = -0.25 ± 0.14 is 1.8 σ from 0, within 2 σ)" in txt, txt
     # the wavelength is the period of both harmonics: undetermined only when neither shows
     weak_fundamental = {**ripple, "a": 0.001, "a2": 0.05}
     sd2 = {**sd, "a": 0.002, "phase": 3.0, "a2": 0.002, "phase2": 0.04}
