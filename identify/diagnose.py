@@ -89,7 +89,7 @@ from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
-from .data import DataError, Recording, columns_option, may_be_load
+from .data import DataError, Recording, _split_header, columns_option, may_be_load
 from .errors import IdentificationError
 from .segment import (across_gaps, checked_threshold, gap_threshold, gross_sliding_mask, piecewise_slope, speed_levels,
                       steady_velocity_mask, time_gaps)
@@ -1830,6 +1830,34 @@ def size_not_shown(name: str, values: dict, sd: dict) -> str | None:
     return "; ".join(weak) if amplitudes and len(weak) == len(amplitudes) else None
 
 
+TURN_BACK = 0.25  # a temperature that comes back this share of its range from its extreme has turned back
+
+
+def temperature_course(time: np.ndarray, temp: np.ndarray, unit: str = "") -> tuple[str, bool] | None:
+    """How a logged temperature goes over ``time``, in words, and whether it turns back (rises,
+    then falls by over TURN_BACK of its range, or the reverse): read on the temperature
+    averaged over a fiftieth of the samples, so that a sensor's noise makes no turn. None with
+    under 10 finite samples."""
+    ok = np.isfinite(temp)
+    if ok.sum() < 10:
+        return None
+    t, T = time[ok], temp[ok]
+    w = max(1, len(T) // 50)
+    sm = uniform_filter1d(T.astype(float), w, mode="nearest")
+    first, last = float(sm[0]), float(sm[-1])
+    i_hi, i_lo = int(np.argmax(sm)), int(np.argmin(sm))
+    hi, lo = float(sm[i_hi]), float(sm[i_lo])
+    rng = hi - lo
+    u = f" {unit}" if unit else ""
+    if rng <= 0:
+        return f"stays at {first:.4g}{u}", False
+    if hi - first > TURN_BACK * rng and hi - last > TURN_BACK * rng:
+        return (f"rises from {first:.4g} to {hi:.4g}{u} by {t[i_hi]:.4g} s, then falls to {last:.4g}{u}", True)
+    if first - lo > TURN_BACK * rng and last - lo > TURN_BACK * rng:
+        return (f"falls from {first:.4g} to {lo:.4g}{u} by {t[i_lo]:.4g} s, then rises to {last:.4g}{u}", True)
+    return f"goes from {first:.4g} to {last:.4g}{u} (between {lo:.4g} and {hi:.4g})", False
+
+
 def unsettled_among(candidates: list, s: "Settings") -> list:
     """With ``Settings.must_settle`` (the default): the candidates (``Evidence.as_dict``) with
     held-out evidence that were not named because their change is not seen to settle within
@@ -3416,6 +3444,22 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         cmp_.notes.append(f"columns not read as any signal: {', '.join(map(str, load_like))} — a load that presses "
                           f"the contact among them is read with --columns normal_load=<column>, and only then is "
                           f"normal_load a candidate")
+    if rec.temperature is not None and "time_drift" in s.candidates:
+        # read, and used by no candidate: said, with its course over the span compared (a stage's
+        # winding warmed and cooled within the session: a one-way drift was named and nothing
+        # said the change had turned back)
+        span = cmp_.scored if cmp_.scored is not None and cmp_.scored.any() else np.ones(len(cmp_.time), bool)
+        t_lo, t_hi = float(cmp_.time[span][0]), float(cmp_.time[span][-1])
+        inside = (rec.time >= t_lo) & (rec.time <= t_hi)
+        col = rec.columns.get("temperature", "temperature")
+        course = temperature_course(rec.time[inside], rec.temperature[inside], _split_header(col)[1] or "")
+        if course is not None:
+            said, turns = course
+            cmp_.notes.append(f"a temperature is logged ({col}): over the span compared it {said}. No candidate reads a "
+                              f"temperature: a friction that follows it is seen as time_drift, a first-order approach "
+                              f"in time"
+                              + (", which a temperature that turns back does not follow: a drift named here holds "
+                                 "only part of that change, and its b and τ are not the temperature's" if turns else ""))
     base_params = params.replace(effects=())
     meas = cmp_.measured
     n = len(meas)

@@ -1341,3 +1341,28 @@ def test_a_named_effect_whose_size_is_not_told_from_none_is_said_so():
     assert size_not_shown("position_ripple", ripple, {"a": 0.005, "phase": 0.02, "a2": 0.0012, "phase2": 2.0}) is None
     # a load's exponent has no amplitude of that kind (α = 0 is a level, not no effect's shape)
     assert size_not_shown("normal_load", {"alpha": 0.1, "N0": 500.0}, {"alpha": 0.2}) is None
+
+
+def test_a_logged_temperature_course_is_read_as_one_way_or_turning_back():
+    from leuven_friction.identify.diagnose import temperature_course
+    rng = np.random.default_rng(5)
+    t = np.linspace(0.0, 75.0, 15001)
+    noise = rng.normal(0, 0.3, t.size)  # a sensor's noise, a tenth of the range: no turn of its own
+    # a winding warmed to 30 °C by 36 s and cooled to 24: turned back, with its peak's time
+    warm_cool = 22 + 8 * np.exp(-((t - 36) / 18) ** 2) + 2 * (t > 36) * (1 - np.exp(-(t - 36) / 5))
+    said, turns = temperature_course(t, warm_cool + noise, "°C")
+    assert turns and said.startswith("rises from") and "then falls to" in said, said
+    peak = float(said.split(" by ")[1].split(" s")[0])
+    assert abs(peak - t[np.argmax(warm_cool)]) < 3.0, (said, t[np.argmax(warm_cool)])
+    # a first-order warm-up: one way, however noisy; the same in kelvin
+    warm = 22 + 8 * (1 - np.exp(-t / 20))
+    said, turns = temperature_course(t, warm + noise, "°C")
+    assert not turns and said.startswith("goes from 2") and "°C" in said, said
+    assert temperature_course(t, warm + 273.15 + noise, "K")[1] is False
+    # a cooling that comes back up
+    assert temperature_course(t, 40 - 10 * np.sin(np.pi * t / 75), "")[0].startswith("falls from")
+    # a column with blanks: read on what it has; nothing to read, nothing said
+    blanks = warm.copy()
+    blanks[::3] = np.nan
+    assert temperature_course(t, blanks, "°C")[1] is False
+    assert temperature_course(t, np.full(t.size, np.nan), "°C") is None
