@@ -3474,6 +3474,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # diagnosis starts the next one from the gap its last step showed
     pred_given_c = pred_given + model_nuisance(meas - pred_given, allm, cmp_.memory_offset, cmp_.acceleration).correction
     rms0 = _rms((meas - pred_given_c)[allm])
+    if not math.isfinite(rms0):
+        # (nothing is compared to a model that does not simulate: every gap would read "nan")
+        bad = int(np.sum(~np.isfinite(pred_given[allm])))
+        raise DataError(f"{rec.source}: the model as given does not simulate along this recording ({bad} of "
+                        f"{int(allm.sum())} samples compared are not finite): check the parameter file's values "
+                        f"(n = {params.n:g}, the transition curve, S(v)) or fit this recording first")
     say(0.05, "refitting the level and presliding stiffness (the alternative)")
     # the strokes' order sets how far a softening must be seen to settle (``softening_nc_max``):
     # for one the file carries as for a candidate

@@ -620,6 +620,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         notes.extend(tfit.notes)
         if not fit_n:
             held["n"] = f"fixed at {n:g} (the paper's choice; --fit-n estimates it)"
+        elif tfit.n_stderr is None:
+            held["n"] = f"at its lower bound {tfit.n:g}: the branches start more sharply than eq. (5) can (n ≥ 1)"
     elif base is None and (unresolved or unbounded):
         # no file of this machine's to hold from, but branches that show how far presliding
         # reaches: the paper's curve, brought to this machine's scale

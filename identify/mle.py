@@ -262,7 +262,10 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
     hi = np.full(len(theta0), np.inf)
     lo[:nk], hi[:nk] = np.log(1e-6 * f_max) - log_start, np.log(20.0 * f_max) - log_start
     if fit_n:
-        lo[nk], hi[nk] = np.log(0.5), np.log(50.0)
+        # n ≥ 1: below it eq. (5)'s slope dz/dx = 1 − |F_d/D|^n has an infinite derivative in F_d
+        # at F_d = 0, at every reversal, and the simulator's implicit step (|r|^(n−1) at r = 0)
+        # gives NaN (a joint's Maxwell-slip curve fitted n = 0.63, and its file simulated to NaN)
+        lo[nk], hi[nk] = np.log(N_MIN), np.log(50.0)
     theta0 = np.clip(theta0, lo + 1e-9, hi - 1e-9)
     ns = nk + (1 if fit_n else 0)
 
@@ -331,14 +334,19 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
                 gauss += 1
             i += 1
     dof = max(samples - (ns if gauss else 0) - gauss, 0)
+    n_at_bound = fit_n and best.x[nk] <= lo[nk] + BOUND_TOL * (hi[nk] - lo[nk])
+    if n_at_bound:
+        notes.append(f"n at its lower bound {N_MIN:g}: the branches start more sharply than eq. (5) can at any n "
+                     f"the simulator takes; n is held there, not estimated")
     return TransitionFit(
         z=z_knots, F=F, stderr=np.concatenate([[0.0], sd[:nk]]), covariance=cov[:nk, :nk], n=nn,
-        n_stderr=float(sd[nk]) if fit_n else None, nll=float(best.fun), offsets=list(map(float, off)), notes=notes,
+        n_stderr=float(sd[nk]) if fit_n and not n_at_bound else None, nll=float(best.fun), offsets=list(map(float, off)), notes=notes,
         flat=flat, unbounded=unbounded, beyond=beyond, asked=asked, chi2=chi2, dof=dof,
     )
 
 
 BOUND_TOL = 1e-3  # a log-increment within this fraction of its range from a bound is at it
+N_MIN = 1.0  # the smallest n of eq. (5) the simulator takes (``model.params``' bound; see ``fit_transition_curve``)
 
 
 def _hessian(f, x, h):

@@ -458,10 +458,12 @@ class FrictionParams:
     model: str = "leuven"
     stribeck: Stribeck = None  # type: ignore[assignment]
     transition_curve: TransitionCurve = None  # type: ignore[assignment]
-    n: float = _param(7.0, kind="dimensionless", symbol="n", lower=0.0, lower_open=True, typical=(1.0, 20.0),
+    # n ≥ 1: below it eq. (5) has an infinite slope in F_d at every reversal, which the implicit
+    # step of the kernels cannot take (|r|^(n−1) at r = 0 is infinite: the simulation is NaN)
+    n: float = _param(7.0, kind="dimensionless", symbol="n", lower=1.0, typical=(1.0, 20.0),
                       models=("leuven",), group="model",
                       description="exponent of the state equation (5), similar to the exponent of the general "
-                                  "Dahl model; the paper chose 7")
+                                  "Dahl model; the paper chose 7 (at least 1)")
     sigma1: float = _param(1500.0, kind="damping", symbol="σ1", lower=0.0, scale="lin", models=("leuven", "lugre"),
                            group="model", description="micro-viscous damping coefficient: the σ1·dz/dt term of eq. (3)")
     sigma0: float | None = _param(None, kind="stiffness", symbol="σ0", lower=0.0, lower_open=True, scale="log",

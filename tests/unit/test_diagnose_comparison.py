@@ -1366,3 +1366,21 @@ def test_a_logged_temperature_course_is_read_as_one_way_or_turning_back():
     blanks[::3] = np.nan
     assert temperature_course(t, blanks, "°C")[1] is False
     assert temperature_course(t, np.full(t.size, np.nan), "°C") is None
+
+
+def test_a_model_that_does_not_simulate_is_refused_in_one_line_not_diagnosed_to_nan():
+    # n < 1 (a Maxwell-slip curve fitted by an older `fit --fit-n` to n = 0.63): eq. (5)'s implicit
+    # step meets |r|^(n−1) at r = 0 at the first reversal, and the simulation is NaN; the file's
+    # schema refuses such an n, a set made in code reaches the diagnosis and is refused there
+    from leuven_friction.identify.data import DataError
+    from leuven_friction.identify.diagnose import diagnose
+    from leuven_friction.model.params import ParameterError
+    from synth.hidden import make_case, oracle_params, to_recording
+
+    df, truth, _ = make_case("tribometer", 4243, ())
+    rec = to_recording(df.iloc[:20000], "n06.csv")
+    bad = oracle_params(truth).replace(n=0.6)
+    with pytest.raises(DataError, match=r"^n06.csv: the model as given does not simulate along this recording .*n = 0.6"):
+        diagnose(rec, bad)
+    with pytest.raises(ParameterError, match="n: must be >= 1"):
+        bad.validate()
