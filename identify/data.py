@@ -166,11 +166,21 @@ def _fits(unit: str | None, sig: str) -> bool:
 
 def may_be_load(column: str) -> bool:
     """Whether a column no signal was taken from may hold a normal load by its header's unit: none
-    given, one of a force or a moment, or one not known here (a clamp's pressure in bar presses a
-    contact too); not a unit of another kind (a winding's °C, a time, a length)."""
+    given, one of a force or a moment, a mass (a payload, once weighed: ``is_mass``), or one not
+    known here (a clamp's pressure in bar presses a contact too); not a unit of another kind (a
+    winding's °C, a time, a length) nor a current (a motor's, which drives, not presses)."""
     unit = _split_header(column)[1]
+    if unit is not None and unit.strip().lower() in CURRENTS:
+        return False
     u = unit_of(unit, "normal_load") if unit is not None else None
     return u is None or u[1] in SI_OF["normal_load"]
+
+
+def is_mass(column: str) -> bool:
+    """Whether a column's header gives it a mass's unit (a payload in kg): no load until weighed
+    ("lb", read as pound-force in a load's column, is not one)."""
+    unit = _split_header(column)[1]
+    return unit is not None and unit.strip().lower() in MASSES and unit_of(unit, "normal_load") is None
 
 
 def _reads_as_not_measured(key: str, sig: str) -> str:

@@ -89,7 +89,7 @@ from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
-from .data import DataError, Recording, _split_header, columns_option, may_be_load
+from .data import DataError, Recording, _split_header, columns_option, is_mass, may_be_load
 from .errors import IdentificationError
 from .segment import (across_gaps, checked_threshold, gap_threshold, gross_sliding_mask, piecewise_slope, speed_levels,
                       steady_velocity_mask, time_gaps)
@@ -1830,6 +1830,21 @@ def size_not_shown(name: str, values: dict, sd: dict) -> str | None:
     return "; ".join(weak) if amplitudes and len(weak) == len(amplitudes) else None
 
 
+def load_not_pressing(load: np.ndarray, mask: np.ndarray | None, column: str, unit: str = "") -> str | None:
+    """What to say of a normal-load column at or below 0 on some of the samples compared
+    (``mask``), or None: the load candidate's (N/N0)^α makes friction vanish there (a joint's
+    payload logged as its weight alone, 0 while unloaded, read α 0.23 and a gap 120 % worse)."""
+    n = load if mask is None or not mask.any() else load[mask]
+    low = n <= 0.0
+    if not low.any():
+        return None
+    u = f" {unit}" if unit else ""
+    return (f"the normal load ({column}) is at or below 0 on {np.mean(low):.1%} of the samples compared (down to "
+            f"{float(np.min(n)):.3g}{u}): the load candidate's (N/N0)^α makes friction vanish there, so a friction "
+            f"that follows a load added to one always there (a payload beside its carriage) does not fit it; a load "
+            f"column is the whole force pressing the contact, never 0")
+
+
 TURN_BACK = 0.25  # a temperature that comes back this share of its range from its extreme has turned back
 
 
@@ -3441,9 +3456,22 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # no load candidate without a load: a column the reader passed over may be one (a
         # pitch bearing's bending moment, left out where the user named only the drive torque);
         # one whose unit is of another kind (a winding's °C) is not offered as one
-        cmp_.notes.append(f"columns not read as any signal: {', '.join(map(str, load_like))} — a load that presses "
-                          f"the contact among them is read with --columns normal_load=<column>, and only then is "
-                          f"normal_load a candidate")
+        masses = [c for c in load_like if is_mass(str(c))]
+        others = [c for c in load_like if not is_mass(str(c))]
+        cmp_.notes.append(
+            f"columns not read as any signal: {', '.join(map(str, load_like))} — "
+            + ("a load that presses the contact among them is read with --columns normal_load=<column>"
+               + ("; " if masses else "") if others else "")
+            # a mass is refused as a load (``unit_of``): the advice is to weigh it, all of it
+            + (f"{', '.join(map(str, masses))} {'is a mass' if len(masses) == 1 else 'are masses'}: a load is the whole "
+               f"force pressing the contact, the mass's weight m·g with what presses it without that mass (never 0), "
+               f"written in N as a column of its own and read with --columns normal_load=<column>" if masses else "")
+            + "; only then is normal_load a candidate")
+    if cmp_.load is not None:
+        said = load_not_pressing(cmp_.load, cmp_.scored, rec.columns.get("normal_load", "normal_load"),
+                                 rec.units.get("normal_load", ""))
+        if said:
+            cmp_.notes.append(said)
     if rec.temperature is not None and "time_drift" in s.candidates:
         # read, and used by no candidate: said, with its course over the span compared (a stage's
         # winding warmed and cooled within the session: a one-way drift was named and nothing

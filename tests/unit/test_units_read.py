@@ -384,3 +384,28 @@ def test_a_column_whose_unit_is_of_another_kind_is_not_offered_as_a_normal_load(
     # a temperature, a time or a length is no load
     for column in ("winding_temp[degC]", "t_oil [°C]", "housing [K]", "t [ms]", "pos [mm]", "angle [deg]"):
         assert not may_be_load(column), column
+    # nor is a motor's current, which drives the axis (a joint's note had offered `motor_current [A]`)
+    for column in ("motor_current [A]", "i_q [mA]"):
+        assert not may_be_load(column), column
+
+
+def test_a_mass_is_told_from_a_force_for_the_advice_to_weigh_it():
+    from leuven_friction.identify.data import is_mass
+
+    assert is_mass("payload [kg]") and is_mass("m [g]")
+    # pound in a load's column is read as pound-force; a force, a moment or no unit is no mass
+    for column in ("load [lb]", "Fn [N]", "moment [N*m]", "payload"):
+        assert not is_mass(column), column
+
+
+def test_a_load_at_zero_is_said_to_make_the_load_law_vanish():
+    from leuven_friction.identify.diagnose import load_not_pressing
+
+    # a payload's weight alone: 0 N while unloaded, on a third of the samples compared
+    load = np.repeat([0.0, 24.5, 49.0], 1000)
+    said = load_not_pressing(load, np.ones(3000, bool), "payload_force [N]", "N")
+    assert said is not None and "33.3% of the samples compared (down to 0 N)" in said and "never 0" in said, said
+    # the whole load (the carriage's weight beside it) presses everywhere: nothing said; nor where
+    # the zeros lie outside what is compared
+    assert load_not_pressing(load + 49.0, None, "load [N]", "N") is None
+    assert load_not_pressing(load, load > 0, "payload_force [N]", "N") is None
