@@ -34,8 +34,9 @@ def _params(path: str | None, model: str | None):
 
 def say_if_compiling(out=sys.stderr) -> bool:
     """Say so where the simulator's kernels have no compiled cache yet: numba compiles them on
-    their first use on a machine (``cache=True`` keeps them), and that run takes 15–30 s more.
-    Looked up without importing numba (the command line starts light)."""
+    their first use on a machine (``cache=True`` keeps them), and that run takes 30–60 s more (a
+    fit of the sample 36 s against 3 s once cached; a new user's first fit, beside other runs, 76 s
+    against 8). Looked up without importing numba (the command line starts light)."""
     import importlib.util
     import os
     from pathlib import Path
@@ -48,7 +49,7 @@ def say_if_compiling(out=sys.stderr) -> bool:
     places = [src.parent / "__pycache__", Path(os.environ.get("NUMBA_CACHE_DIR") or Path.home() / ".cache" / "numba")]
     if any(any(d.rglob(f"{src.stem}.*.nbi")) for d in places if d.is_dir()):
         return False
-    print("note: compiling the simulator's kernels for this machine (the first run only: 15–30 s more)", file=out)
+    print("note: compiling the simulator's kernels for this machine (the first run only: 30–60 s more)", file=out)
     return True
 
 

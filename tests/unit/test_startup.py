@@ -46,7 +46,7 @@ def test_model_package_loads_its_names_on_first_use():
 
 def test_a_first_run_says_the_kernels_are_being_compiled(tmp_path, monkeypatch):
     # numba compiles the kernels on their first use on a machine and caches them: a command says
-    # so where no cache is found (that run takes 15–30 s more), and not once one is there
+    # so where no cache is found (that run takes 30–60 s more), and not once one is there
     import importlib.util
     import io
     from types import SimpleNamespace
