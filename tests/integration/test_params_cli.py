@@ -32,8 +32,9 @@ def test_yaml_round_trip_preserves_model(tmp_path, kuka):
 BAD = [
     ({"transition_curve": {"kind": "piecewise_linear", "z": [0, 1e-5, 5e-6], "F": [0, 10, 20]}}, "transition_curve.z.2"),
     ({"transition_curve": {"kind": "piecewise_linear", "z": [0, 1e-5, 2e-5], "F": [0, 10, 9]}}, "transition_curve.F.2"),
-    ({"n": 0}, "n: must be > 0"),
-    ({"n": -2}, "n: must be > 0"),
+    ({"n": 0}, "n: must be >= 1"),
+    ({"n": -2}, "n: must be >= 1"),
+    ({"n": 0.63}, "n: must be >= 1"),  # (simulates to NaN: eq. (5)'s step at a reversal)
     ({"stribeck": {"positive": {"Fs": 36, "Fc": 27, "vs": 0.007, "delta": 0.5, "sigma2": 7.7},
                    "negative": {"Fs": 63, "Fc": -52, "vs": -0.004, "delta": 0.9, "sigma2": 8}}}, "stribeck.negative.Fs"),
     ({"sigma1": float("nan")}, "sigma1: must be finite"),
