@@ -142,6 +142,14 @@ CURRENTS = ("a", "ma", "amp", "amps", "ampere", "amperes")  # a motor current, w
 MASSES = ("kg", "g", "lb", "lbm", "t")  # a mass, which is no force until weighed (a payload logged as such)
 
 
+def is_current_unit(unit: str | None) -> bool:
+    return unit is not None and unit.strip().lower() in CURRENTS
+
+
+def is_mass_unit(unit: str | None) -> bool:
+    return unit is not None and unit.strip().lower() in MASSES
+
+
 def _current_fix(name: str, unit: str) -> str:
     """What to write for a column ``name`` logged as a motor current in ``unit`` (one of
     CURRENTS): the torque (or force) constant per that unit as its unit. (In mA the constant
@@ -170,7 +178,7 @@ def may_be_load(column: str) -> bool:
     known here (a clamp's pressure in bar presses a contact too); not a unit of another kind (a
     winding's °C, a time, a length) nor a current (a motor's, which drives, not presses)."""
     unit = _split_header(column)[1]
-    if unit is not None and unit.strip().lower() in CURRENTS:
+    if is_current_unit(unit):
         return False
     u = unit_of(unit, "normal_load") if unit is not None else None
     return u is None or u[1] in SI_OF["normal_load"]
@@ -180,7 +188,7 @@ def is_mass(column: str) -> bool:
     """Whether a column's header gives it a mass's unit (a payload in kg): no load until weighed
     ("lb", read as pound-force in a load's column, is not one)."""
     unit = _split_header(column)[1]
-    return unit is not None and unit.strip().lower() in MASSES and unit_of(unit, "normal_load") is None
+    return is_mass_unit(unit) and unit_of(unit, "normal_load") is None
 
 
 def _reads_as_not_measured(key: str, sig: str) -> str:
@@ -249,7 +257,7 @@ class Recording:
         if could:
             return "; ".join(could)
         currents = [(c, key, unit) for c in self.ignored for key, unit in [_split_header(c)]
-                    if (unit or "").strip().lower() in CURRENTS]
+                    if is_current_unit(unit)]
         if currents and {"force", "friction"} & set(signals):
             col, key, unit = currents[0]
             return f"column {col!r} is a current ({unit}): {_current_fix(key, unit)}"
@@ -650,9 +658,9 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 if unit.strip().lower() in COUNTS:
                     raise DataError(f"{path}: column {col!r}: unit {unit!r} counts steps without saying their size: "
                                     f"{_counts_fix(headers[col][0])}")
-                if unit.strip().lower() in CURRENTS and sig in ("force", "friction"):
+                if is_current_unit(unit) and sig in ("force", "friction"):
                     raise DataError(f"{path}: column {col!r}: unit {unit!r}: {_current_fix(headers[col][0], unit)}")
-                if unit.strip().lower() in MASSES and sig in ("force", "friction", "normal_load"):
+                if is_mass_unit(unit) and sig in ("force", "friction", "normal_load"):
                     # a payload's mass is not the load on the contact: the carriage's own weight presses it too
                     what = ("the normal load is the force pressing the contact: the whole moving mass on it (carriage "
                             "and payload) times g, in N" if sig == "normal_load" else f"{sig} is a force, in N")

@@ -1882,6 +1882,12 @@ def unsettled_among(candidates: list, s: "Settings") -> list:
     return [c for c in candidates if c.get("unsettled") and c.get("evident")]
 
 
+def seen_unnamed(confounded: list, unused: list, candidates: list, s: "Settings") -> bool:
+    """Whether any candidate was seen and not named: confounded, not settling, not where it must
+    show, or not used by the model written (``base_off_verdict``'s ``seen``)."""
+    return bool(confounded or unused or unsettled_among(candidates, s) or elsewhere_among(candidates))
+
+
 def elsewhere_among(candidates: list) -> list:
     """The candidates (``Evidence.as_dict``) that gain held out, but not where their physics
     must show (``Evidence.elsewhere``), and were not named."""
@@ -2803,9 +2809,8 @@ class Diagnosis:
                 + [(c, self.not_where_it_shows(c)) for c in self.elsewhere])
 
     def seen_unnamed(self) -> bool:
-        """Whether any candidate was seen and not named: confounded, not settling, not where it
-        must show, or not used by the model written (``base_off_verdict``'s ``seen``)."""
-        return bool(self.confounded or self.unsettled or self.unused or self.elsewhere)
+        """Whether any candidate was seen and not named (``seen_unnamed``)."""
+        return seen_unnamed(self.confounded, self.unused, self.candidates, self.settings)
 
     def not_named(self) -> list:
         """What the evidence shows but the diagnosis does not name, one short line each: an
@@ -3467,7 +3472,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                f"force pressing the contact, the mass's weight m·g with what presses it without that mass (never 0), "
                f"written in N as a column of its own and read with --columns normal_load=<column>" if masses else "")
             + "; only then is normal_load a candidate")
-    if cmp_.load is not None:
+    if cmp_.load is not None and ("normal_load" in s.candidates or any(e["name"] == "normal_load" for e in params.effects)):
         said = load_not_pressing(cmp_.load, cmp_.scored, rec.columns.get("normal_load", "normal_load"),
                                  rec.units.get("normal_load", ""))
         if said:
@@ -4006,8 +4011,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         cmp_.notes.append(f"nothing named, so the model written is the one given, which leaves {rms0:.4g}; the "
                           f"base refitted alone (the alternative) leaves {rms_alt:.4g} — "
                           + base_off_verdict(rms_alt, cmp_.noise, s.candidates,
-                                             seen=bool(confounded or unused or unsettled_among(cands_out, s)
-                                                       or elsewhere_among(cands_out))) + ": "
+                                             seen=seen_unnamed(confounded, unused, cands_out, s)) + ": "
                           + (f"the {made_by} of {name} that made the file holds or misses what the refit moves "
                              f"(see its held parameters, and the refit's values above)" if fitted_here else
                              "fit it to this recording (`leuven-friction fit`) or give --params closer to it")
@@ -4049,7 +4053,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 # stage's warm-up that came and went, fitted as one approach: b −0.25 ± 0.14)
                 cmp_.notes.append(f"{e['name']} is named on its held-out evidence, but in the model written (n, σ1 and "
                                   f"S(v) refitted with it) its size is not told from none ({weak}; σ from the spread "
-                                  f"over the folds): a change is seen, its size and how fast it comes are not pinned down")
+                                  f"over the folds): a change is seen, its size is not pinned down")
         prov = dict(params.provenance)
         # (the bounds a diagnosis says, below, are said again by this one or not at all)
         held_before = {k: v for k, v in (prov.get("held") or {}).items()

@@ -621,7 +621,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         if not fit_n:
             held["n"] = f"fixed at {n:g} (the paper's choice; --fit-n estimates it)"
         elif tfit.n_stderr is None:
-            held["n"] = f"at its lower bound {tfit.n:g}: the branches start more sharply than eq. (5) can (n ≥ 1)"
+            held["n"] = (f"at its lower bound {tfit.n:g}: the branches run into sliding more gradually than eq. (5) "
+                         f"does at n = 1 (n ≥ 1: below it the simulation fails)")
     elif base is None and (unresolved or unbounded):
         # no file of this machine's to hold from, but branches that show how far presliding
         # reaches: the paper's curve, brought to this machine's scale

@@ -313,7 +313,9 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
             i += 1
     beyond = tuple(i for i in range(1, len(F)) if F[i - 1] >= asked)
 
-    H = _information(z_knots, F, nn, fit_n, off, datasets)
+    # n held at its bound is no estimate: the knots' σ are those with n fixed there
+    n_at_bound = bool(fit_n and best.x[nk] <= lo[nk] + BOUND_TOL * (hi[nk] - lo[nk]))
+    H = _information(z_knots, F, nn, fit_n and not n_at_bound, off, datasets)
     notes = []
     try:
         cov = np.linalg.inv(H)
@@ -334,10 +336,11 @@ def fit_transition_curve(datasets, z_knots, *, n: float = 7.0, fit_n: bool = Fal
                 gauss += 1
             i += 1
     dof = max(samples - (ns if gauss else 0) - gauss, 0)
-    n_at_bound = fit_n and best.x[nk] <= lo[nk] + BOUND_TOL * (hi[nk] - lo[nk])
     if n_at_bound:
-        notes.append(f"n at its lower bound {N_MIN:g}: the branches start more sharply than eq. (5) can at any n "
-                     f"the simulator takes; n is held there, not estimated")
+        # a small n bends the branch away from its first stiffness early: below 1, more gradually
+        # than eq. (5) can at any n the simulator takes
+        notes.append(f"n at its lower bound {N_MIN:g}: the branches run into sliding more gradually than eq. (5) "
+                     f"does at n = {N_MIN:g}; n is held there, not estimated")
     return TransitionFit(
         z=z_knots, F=F, stderr=np.concatenate([[0.0], sd[:nk]]), covariance=cov[:nk, :nk], n=nn,
         n_stderr=float(sd[nk]) if fit_n and not n_at_bound else None, nll=float(best.fun), offsets=list(map(float, off)), notes=notes,

@@ -158,7 +158,7 @@ class Context:
 
 def _sigmas(d: float, s: float) -> str:
     """|d| in units of s, as said: "1.8 σ"."""
-    return f"{d / s:.2g} σ" if s > 0 else "∞ σ"
+    return f"{d / s:.2g} σ" if s > 0 else ("0 σ" if d == 0 else "∞ σ")
 
 
 SHAPE_SIGMAS = 2.0  # an amplitude within this many σ of no effect leaves its shape parameters undetermined
