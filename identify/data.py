@@ -142,6 +142,11 @@ CURRENTS = ("a", "ma", "amp", "amps", "ampere", "amperes")  # a motor current, w
 MASSES = ("kg", "g", "lb", "lbm", "t")  # a mass, which is no force until weighed (a payload logged as such)
 
 
+def header_unit(column: str) -> str | None:
+    """The unit a column's header gives in brackets ("temperature [°C]" → "°C"), or None."""
+    return _split_header(column)[1]
+
+
 def is_current_unit(unit: str | None) -> bool:
     return unit is not None and unit.strip().lower() in CURRENTS
 

@@ -89,7 +89,7 @@ from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
-from .data import DataError, Recording, _split_header, columns_option, is_mass, may_be_load
+from .data import DataError, Recording, columns_option, header_unit, is_mass, may_be_load
 from .errors import IdentificationError
 from .segment import (across_gaps, checked_threshold, gap_threshold, gross_sliding_mask, piecewise_slope, speed_levels,
                       steady_velocity_mask, time_gaps)
@@ -3485,7 +3485,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         t_lo, t_hi = float(cmp_.time[span][0]), float(cmp_.time[span][-1])
         inside = (rec.time >= t_lo) & (rec.time <= t_hi)
         col = rec.columns.get("temperature", "temperature")
-        course = temperature_course(rec.time[inside], rec.temperature[inside], _split_header(col)[1] or "")
+        course = temperature_course(rec.time[inside], rec.temperature[inside], header_unit(col) or "")
         if course is not None:
             said, turns = course
             cmp_.notes.append(f"a temperature is logged ({col}): over the span compared it {said}. No candidate reads a "
