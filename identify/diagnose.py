@@ -3739,8 +3739,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                 del steps[before.steps:], scored[before.scored:], fits[before.fits:], rounds[before.rounds:]
                 del cmp_.notes[before.notes:]
                 # the round is run again from the same model, its confounded pairs out of the running
-                # and not found again: a winner there is judged beside their better ones all the same
-                carried = leaders
+                # and not found again: a winner there is judged beside their better ones all the same,
+                # the winner taken back among them (it leads the pairs found confounded just now)
+                carried = tuple(confounded_leaders([], (*leaders, last)))
                 continue
         passing = sorted([e for e in evid if e.passes(s)], key=lambda e: -e.heldout_gain)
         cands_out = [e.as_dict(s) for e in sorted(evid, key=lambda e: -e.heldout_gain)]
