@@ -1830,6 +1830,21 @@ def size_not_shown(name: str, values: dict, sd: dict) -> str | None:
     return "; ".join(weak) if amplitudes and len(weak) == len(amplitudes) else None
 
 
+def unread_load_note(columns: list) -> str:
+    """The note on the columns not read that may hold a normal load (``may_be_load``): how to
+    read a load among them, and, for a mass (``is_mass``), how to weigh it — a mass is refused as
+    a load (``unit_of``), so naming it as one is no advice."""
+    masses = [str(c) for c in columns if is_mass(str(c))]
+    parts = ["a load that presses the contact among them is read with --columns normal_load=<column>"
+             ] if len(masses) < len(columns) else []
+    if masses:
+        parts.append(f"{', '.join(masses)} {'is a mass' if len(masses) == 1 else 'are masses'}: a load is the whole "
+                     f"force pressing the contact, the mass's weight m·g with what presses it without that mass "
+                     f"(never 0), written in N as a column of its own and read with --columns normal_load=<column>")
+    parts.append("only then is normal_load a candidate")
+    return f"columns not read as any signal: {', '.join(map(str, columns))} — " + "; ".join(parts)
+
+
 def load_not_pressing(load: np.ndarray, mask: np.ndarray | None, column: str, unit: str = "") -> str | None:
     """What to say of a normal-load column at or below 0 on some of the samples compared
     (``mask``), or None: the load candidate's (N/N0)^α makes friction vanish there (a joint's
@@ -3461,17 +3476,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # no load candidate without a load: a column the reader passed over may be one (a
         # pitch bearing's bending moment, left out where the user named only the drive torque);
         # one whose unit is of another kind (a winding's °C) is not offered as one
-        masses = [c for c in load_like if is_mass(str(c))]
-        others = [c for c in load_like if not is_mass(str(c))]
-        cmp_.notes.append(
-            f"columns not read as any signal: {', '.join(map(str, load_like))} — "
-            + ("a load that presses the contact among them is read with --columns normal_load=<column>"
-               + ("; " if masses else "") if others else "")
-            # a mass is refused as a load (``unit_of``): the advice is to weigh it, all of it
-            + (f"{', '.join(map(str, masses))} {'is a mass' if len(masses) == 1 else 'are masses'}: a load is the whole "
-               f"force pressing the contact, the mass's weight m·g with what presses it without that mass (never 0), "
-               f"written in N as a column of its own and read with --columns normal_load=<column>" if masses else "")
-            + "; only then is normal_load a candidate")
+        cmp_.notes.append(unread_load_note(load_like))
     if cmp_.load is not None and ("normal_load" in s.candidates or any(e["name"] == "normal_load" for e in params.effects)):
         said = load_not_pressing(cmp_.load, cmp_.scored, rec.columns.get("normal_load", "normal_load"),
                                  rec.units.get("normal_load", ""))
