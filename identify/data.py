@@ -636,6 +636,15 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             values = clock
             notes.append(f"{col}: clock readings, taken as seconds from the first row ({raw.iloc[0]})")
         bad = np.flatnonzero(~np.isfinite(values))
+        if len(bad) and sig == "temperature" and all(_empty(c) for c in raw.iloc[bad]):
+            # a temperature is only reported (``diagnose.temperature_course`` reads its finite
+            # samples): empty cells are a slower logger's rows between readings, not an error
+            # (a stage's 1 Hz thermocouple in a 1 kHz log stopped the whole file)
+            if len(bad) == len(values):
+                notes.append(f"{col}: every cell empty: not read")
+                continue
+            notes.append(f"{col}: {len(bad)} of {len(values)} rows empty (a slower logger): only its readings are used")
+            bad = bad[:0]
         if len(bad):
             r = int(bad[0])
             cell = raw.iloc[r]

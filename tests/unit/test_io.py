@@ -526,3 +526,27 @@ def test_a_tribometers_tangential_force_beside_its_normal_force_is_its_friction(
     p.write_text("t [s]\tx [um]\tFt [N]\tFn [N]\n" + "".join(f"{i * 1e-3}\t{i}\t0.5\t10\n" for i in range(20)))
     rec = load_recording(p)
     assert rec.columns == {"time": "t [s]", "position": "x [um]", "friction": "Ft [N]", "normal_load": "Fn [N]"}
+
+
+def test_a_temperature_logged_slower_leaves_its_rows_between_readings_empty(tmp_path):
+    # a 1 Hz thermocouple in a 100 Hz log: its cell is empty between readings, which is no
+    # error; its readings are kept where they are, and a cell that is text still is one
+    rows = "".join(f"{0.01 * i},{1e-3 * i},{2.0},{'' if i % 100 else 20 + i / 100}\n" for i in range(400))
+    path = tmp_path / "slow_temp.csv"
+    path.write_text("time [s],position [m],force [N],temperature [degC]\n" + rows)
+    rec = load_recording(path)
+    assert np.isfinite(rec.temperature).sum() == 4
+    np.testing.assert_allclose(rec.temperature[::100], [20.0, 21.0, 22.0, 23.0])
+    assert "temperature [degC]: 396 of 400 rows empty (a slower logger): only its readings are used" in rec.notes
+    # the position is not let off the same way
+    path.write_text("time [s],position [m],force [N],temperature [degC]\n" + rows.replace(",0.002,", ",,", 1))
+    with pytest.raises(DataError, match=r"column 'position \[m\]' row 4: is empty or NaN"):
+        load_recording(path)
+    path.write_text("time [s],position [m],force [N],temperature [degC]\n" + rows.replace(",20.0\n", ",warm\n", 1))
+    with pytest.raises(DataError, match=r"column 'temperature \[degC\]' row 2: 'warm' is not a finite number"):
+        load_recording(path)
+    # a temperature column with no reading at all is left out, and said
+    path.write_text("time [s],position [m],force [N],temperature [degC]\n"
+                    + "".join(f"{0.01 * i},{1e-3 * i},{2.0},\n" for i in range(50)))
+    rec = load_recording(path)
+    assert rec.temperature is None and "temperature [degC]: every cell empty: not read" in rec.notes
