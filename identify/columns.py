@@ -42,8 +42,8 @@ def columns_help() -> str:
         [para("columns are recognised by their header names (any case; for time, position, force and friction "
               "a word of a longer name too: tau_motor, x_mm), unless --columns names them:")]
         + [para(f"{sig}: {', '.join(ALIASES[sig])}", "  ") for sig in ALIASES]
-        + [para("a name that reads as a reference, command, model or estimate (q_ref, pos_cmd, friction_model) "
-                "is not taken."),
+        + [para("a name that reads as a reference, model or estimate (q_ref, friction_model), or a motion's "
+                "command (pos_cmd, vel_cmd), is not taken; a force's command (force_cmd) is, as the force applied."),
            para("without a friction or force column, a friction coefficient (" + ", ".join(sorted(COF_NAMES)) + ") "
                 "is read as the friction divided by the normal load, which must then have a column; without a "
                 "position column, the velocity is integrated into one."),

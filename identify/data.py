@@ -208,6 +208,19 @@ def _reads_as_not_measured(key: str, sig: str) -> str:
     return ""
 
 
+def unit_word_of(key: str, sig: str) -> str | None:
+    """The unit a header name without brackets writes as its last word, if a unit of signal
+    ``sig`` (``force_kn`` → "kn" for a force; ``x_mm`` → "mm" for a position), else None."""
+    words = [w for w in key.split("_") if w]
+    return words[-1] if len(words) > 1 and words[-1] in UNITS and _fits(words[-1], sig) else None
+
+
+def _as_spelled(col: str, unit_word: str) -> str:
+    """A unit word read from a header name, as the header spells it ('friction_mN' → 'mN'), for the notes."""
+    tail = str(col).strip()[-len(unit_word):]
+    return tail if tail.lower() == unit_word else unit_word
+
+
 def recognise(key: str, unit: str | None = None) -> list:
     """The signals a header name (lower case, its bracketed ``unit`` apart) may name by its words,
     most likely first, each with a unit written as the name's last word (or None):
@@ -545,6 +558,12 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                             + ("; a leading '-' takes a column with its sign turned, e.g. force=-F" if "-" not in col
                                and sig in ("force", "friction", "position", "velocity") else ""))
         mapping[sig] = found
+        key, unit = headers[found]
+        if unit is None and (word := unit_word_of(key, sig)) is not None:
+            # a column named as asked reads its unit from its name as one recognised by its
+            # words does ('force_kN' as force in kN, '-position/mm' turned and in mm): read as
+            # SI, a guideway's force in kN came out a thousand times too small
+            headers[found] = (key, _as_spelled(found, word))
     taken = set(mapping.values())
     for sig in SIGNALS:
         if sig in mapping or sig in refused:
@@ -564,9 +583,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             if sig not in mapping and sig not in refused:
                 by_words.setdefault(sig, []).append(col)
                 if unit is None and unit_word is not None:
-                    # the unit as the header spells it ('friction_mN' → 'mN'), for the notes
-                    tail = str(col).strip()[-len(unit_word):]
-                    headers[col] = (key, tail if tail.lower() == unit_word else unit_word)
+                    headers[col] = (key, _as_spelled(col, unit_word))
                 break
     notes = []
     if blank:

@@ -3942,11 +3942,16 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         if "params_decided" in st:  # a step that named an effect (the alternative's may carry the file's own)
             st["sd"] = with_model_shift(st["sd"], st["params_decided"], st["params"])
         step_preds.append(wf.pred)
-    # the alternative's level scales the whole friction beside the free steady curve; the model
-    # written refits the S(v) levels themselves (its note below): two different factors. Said as
-    # "all friction ×g", not "level ×g": the latter read as a change of S(v) by that much
-    steps[1]["label"] = (f"alternative (free steady curve): all friction {_factor_said(null.g, LEVEL_RANGE)}, "
-                         f"presliding stiffness {_factor_said(null.k0, STIFFNESS_RANGE)}")
+    # the alternative's level scales the model's friction beneath the free steady curve, which
+    # adds what the steady sliding asks: g is then what presliding and the transitions ask; the
+    # model written refits the S(v) levels themselves (its note below): two different factors.
+    # "level ×g" read as a change of S(v) by that much, and "all friction ×0.778" as friction
+    # 22 % lower, on a guideway made apart whose sliding friction rose by up to 12 %
+    steps[1]["label"] = (f"alternative (free steady curve): the model's friction {_factor_said(null.g, LEVEL_RANGE)} "
+                         f"beneath the curve, presliding stiffness {_factor_said(null.k0, STIFFNESS_RANGE)}")
+    cmp_.notes.append(f"the alternative's factor ×{null.g:.3f} scales the model's friction beneath the free steady "
+                      f"curve, which sets the steady sliding from the data: it is what presliding and the transitions "
+                      f"ask, not a change of S(v) (the model written refits a level of its own: its note)")
     if final_reid is not None:
         cmp_.notes.append(f"S(v) identified anew for the model written from the steady sliding ({final_reid.levels} speed "
                           f"levels, the level and the friction effects divided out; the Markov estimator, holding what "

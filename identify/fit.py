@@ -708,6 +708,15 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             res = refine_fit(res, preps, sigma1_given=base is not None)
             if not (res.refinement or {}).get("done"):
                 say(0.95, "output-error refinement: not done (the report says why)")
+            elif (chi2_red := res.refinement.get("chi2_reduced", 1.0)) > MISFIT_CHI2_RED:
+                # the σ are (JᵀJ)⁻¹ scaled by χ²/dof: that counts the residuals as independent,
+                # which a misfit of the curve's shape, repeated at every reversal, is not — two
+                # controls of a guideway made apart read one knot 184.55 ± 0.21 and 173.48 ± 0.11
+                res.notes.append(f"the refined model leaves χ²/dof = {chi2_red:.3g} (its RMS {math.sqrt(chi2_red):.3g} × "
+                                 f"the noise floor): the σ are scaled by that, but still count the residuals as "
+                                 f"independent, and a misfit of the model's shape that repeats at every reversal is "
+                                 f"not — two recordings of one machine may differ by many of these σ (`diagnose "
+                                 f"--params` tells what the gap is made of)")
         except ImportError:
             res.refinement = {"done": False, "reason": "output-error refinement is not available in this version"}
     else:
@@ -737,6 +746,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 
 
 MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not fit its levels
+MISFIT_CHI2_RED = 4.0  # a refinement leaving its residuals twice the noise floor: its σ are said to be of a misfit
 
 
 def to_its_sd(value: float, sd: float) -> str:

@@ -66,7 +66,9 @@ def params_from_yaml(text: str, name: str = "<yaml>") -> FrictionParams:
 
 
 def params_to_yaml(params: FrictionParams) -> str:
-    return yaml.safe_dump(params.to_dict(), sort_keys=False, default_flow_style=None, width=100)
+    # allow_unicode: the provenance's words (ζ, √, σ, "Savitzky–Golay") as written, not as
+    # \u escapes continued over lines with backslashes; the text is UTF-8 wherever it goes
+    return yaml.safe_dump(params.to_dict(), sort_keys=False, default_flow_style=None, width=100, allow_unicode=True)
 
 
 def save_params(params: FrictionParams, path: str | os.PathLike) -> None:
@@ -78,7 +80,7 @@ def write_atomic(path: str | os.PathLike, text: str) -> None:
     path = Path(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent if str(path.parent) else ".")
     try:
-        with os.fdopen(fd, "w") as fh:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)
         umask = os.umask(0)
         os.umask(umask)

@@ -90,9 +90,9 @@ def test_a_base_off_by_half_is_returned_as_given_and_said_to_be_off():
     assert any("the base, not a missing effect, is what is off" in n for n in d.notes), d.text()
     # and the alternative's step says which way: all of the friction scaled down, towards 1/1.5
     # (the free steady curve beside it takes a part: measured ×0.58), said as a scale of all the
-    # friction, not as "level ×0.58", which read as a change of S(v)
+    # model's friction beneath the curve, not as "level ×0.58", which read as a change of S(v)
     label = d.steps[1]["label"]
-    g = float(re.search(r"all friction ×([0-9.]+), presliding stiffness ×", label).group(1))
+    g = float(re.search(r"the model's friction ×([0-9.]+) beneath the curve, presliding stiffness ×", label).group(1))
     assert 0.4 < g < 0.8, label
 
 

@@ -550,3 +550,22 @@ def test_a_temperature_logged_slower_leaves_its_rows_between_readings_empty(tmp_
                     + "".join(f"{0.01 * i},{1e-3 * i},{2.0},\n" for i in range(50)))
     rec = load_recording(path)
     assert rec.temperature is None and "temperature [degC]: every cell empty: not read" in rec.notes
+
+
+@pytest.mark.parametrize("header, asked", [
+    ("t_s,position_mm,force_kN", "force=-force_kN"),
+    ("t_s,position_mm,force_kN", "position=-position_mm"),
+    ("t/s,position/mm,force/kN", "force=-force/kN"),
+    ("t_s,position_mm,force_kN", "force=force_kN"),
+])
+def test_a_column_named_as_asked_reads_its_unit_from_its_name(tmp_path, header, asked):
+    # a guideway's force in kN turned with --columns, as the refusal of its sign advises, was
+    # read as N: a thousand times too small, with only a note; named as asked, a column's unit
+    # written as its name's last word is read as when it is recognised by its words
+    path = tmp_path / "units_in_names.csv"
+    path.write_text(header + "\n" + "".join(f"{0.001 * i},{0.5 * i},{0.2}\n" for i in range(30)))
+    rec = load_recording(path, columns=parse_column_mapping(asked))
+    sign = {"force": -1.0 if "force=-" in asked else 1.0, "position": -1.0 if "position=-" in asked else 1.0}
+    np.testing.assert_allclose(rec.force, sign["force"] * 200.0)  # 0.2 kN
+    np.testing.assert_allclose(rec.position[:3], sign["position"] * np.array([0.0, 0.5e-3, 1e-3]))  # mm
+    assert not rec.units_assumed and rec.units["force"] == "N" and rec.units["position"] == "m"
