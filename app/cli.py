@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 
 from ..model.errors import FrictionError
@@ -249,7 +248,7 @@ def cmd_diagnose(args) -> int:
     from ..identify.diagnose import diagnose, reading_overrides
     from ..identify.fit import fit_recordings
     from ..identify.paramfile import params_to_yaml
-    from .outputs import Outputs
+    from .outputs import Outputs, json_text
 
     if args.softening_thresholds is not None and args.softening_thresholds < 1:
         raise UserError(f"--softening-thresholds {args.softening_thresholds}: must be at least 1 (1 tries the "
@@ -289,7 +288,7 @@ def cmd_diagnose(args) -> int:
               f"with {'them' if len(d.effects) > 1 else 'it'}", file=sys.stderr)
     with outputs:  # all or none
         if args.json:
-            outputs.write_text(args.json, json.dumps(d.summary(), indent=2) + "\n")
+            outputs.write_text(args.json, json_text(d.summary()))
         if args.html:
             from .report import diagnosis_html
 
@@ -404,7 +403,7 @@ def cmd_serve(args) -> int:
 
 
 def cmd_bench(args) -> int:
-    from .outputs import Outputs
+    from .outputs import Outputs, json_text
 
     outputs = Outputs({"--json": args.json})  # checked before the work
     from .bench import ALL_SECTIONS, run_all
@@ -414,10 +413,10 @@ def cmd_bench(args) -> int:
     if unknown:
         raise UserError(f"--only: unknown section {unknown[0]!r}; known: {', '.join(ALL_SECTIONS)}")
     results = run_all(quick=args.quick, progress=lambda msg: print(msg, file=sys.stderr), sections=sections)
-    print(json.dumps(results, indent=2))
+    print(json_text(results), end="")
     if args.json:
         with outputs:
-            outputs.write_text(args.json, json.dumps(results, indent=2) + "\n")
+            outputs.write_text(args.json, json_text(results))
     return 0
 
 

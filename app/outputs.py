@@ -137,6 +137,25 @@ class Outputs:
         self._staged = []
 
 
+def json_text(obj) -> str:
+    """``obj`` as JSON that any reader parses: a value that is not a finite number (a regime
+    too short for its noise floor: NaN) written as null, where ``json.dumps`` writes a bare
+    ``NaN`` that JavaScript's and strict parsers refuse."""
+    import json
+    import math
+
+    def finite(o):
+        if isinstance(o, float):
+            return o if math.isfinite(o) else None
+        if isinstance(o, dict):
+            return {k: finite(v) for k, v in o.items()}
+        if isinstance(o, (list, tuple)):
+            return [finite(v) for v in o]
+        return o
+
+    return json.dumps(finite(obj), indent=2, allow_nan=False) + "\n"
+
+
 def _remove(path: str) -> None:
     try:
         os.unlink(path)

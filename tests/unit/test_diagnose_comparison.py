@@ -17,6 +17,7 @@ from leuven_friction.identify.diagnose import (
     unresolved_rest,
     friction_from_force,
     gross_sliding,
+    load_changing,
     mean_acceleration,
     model_nuisance,
     noise_colour,
@@ -1384,3 +1385,25 @@ def test_a_model_that_does_not_simulate_is_refused_in_one_line_not_diagnosed_to_
         diagnose(rec, bad)
     with pytest.raises(ParameterError, match="n: must be >= 1"):
         bad.validate()
+
+
+def test_a_load_ramping_under_its_noise_per_sample_counts_as_changing():
+    # a joint's load ramped 800 → 1200 N over 10 s at 500 Hz (0.16 N a sample, under the load
+    # cell's 5 N noise), then held, then stepped down: the ramp is changing throughout, the
+    # step within a window's half of it (a 200th of the record), the holds nowhere
+    rng = np.random.default_rng(0)
+    t = np.arange(0.0, 150.0, 1 / 500)
+    load = np.full(len(t), 800.0)
+    ramp = (t > 12) & (t < 22)
+    load[ramp] = 800 + 40 * (t[ramp] - 12)
+    load[t >= 22] = 1200.0
+    load[t >= 60] = 400.0
+    changing = load_changing(load + 5.0 * rng.standard_normal(len(t)))
+    assert changing[ramp].all()
+    half_window = len(t) / 400 / 500  # s
+    near_step = np.abs(t - 60) <= half_window + 0.01
+    assert changing[near_step].mean() > 0.9
+    holds = ~ramp & ~near_step & ~((t > 22 - half_window - 0.01) & (t < 22 + half_window + 0.01)) & \
+        ~((t > 12 - half_window - 0.01) & (t < 12 + half_window + 0.01))
+    assert changing[holds].mean() < 0.001, changing[holds].sum()
+    assert not load_changing(np.full(1000, 5.0)).any()

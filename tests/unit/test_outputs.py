@@ -7,7 +7,7 @@ import socket
 import pytest
 
 from leuven_friction.app.listen import ListenError, check_listen_address, check_served_port
-from leuven_friction.app.outputs import OutputError, Outputs, check_output_path
+from leuven_friction.app.outputs import OutputError, Outputs, check_output_path, json_text
 
 
 def test_output_path_reasons(tmp_path):
@@ -80,3 +80,12 @@ def test_listen_warns_for_hosts_reachable_from_the_network():
     assert check_listen_address("localhost", 0).loopback
     w = check_listen_address("0.0.0.0", 0).network_warning()
     assert "reachable from the network" in w and "without authentication" in w
+
+
+def test_json_written_is_strict_json_with_null_where_a_number_is_not_finite():
+    # a regime too short for its noise floor had "noise": NaN, which JavaScript's JSON.parse refuses
+    import json
+
+    text = json_text({"regimes": {"load changing": {"n": 6, "noise": float("nan")}}, "gaps": [1.5, float("inf")]})
+    strict = json.loads(text, parse_constant=lambda c: pytest.fail(f"non-standard constant {c}"))
+    assert strict == {"regimes": {"load changing": {"n": 6, "noise": None}}, "gaps": [1.5, None]}
