@@ -475,10 +475,12 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     datasets = []
     short = []  # (crossing range, resolution) of recordings whose reversals resolve no presliding
     slow = levels.slowest_steady_speed()
+    branch_ends = []  # each recording's speed above which a branch has ended (``curve_coverage``)
     for pr in preps:
         # presliding ends where gross sliding begins: below the slowest level; without levels
         # only the 97 % of D cut (F_s from the starting file) bounds the branches
         v_max = max(pr.th.v_floor, 0.3 * slow) if np.isfinite(slow) else np.inf
+        branch_ends.append(v_max)
         fb = force_branches(pr, p.stribeck.positive.Fs, p.stribeck.negative.Fs, v_max)
         if fb:
             ds = PreslidingData(fb, pr.position_noise, name=f"{pr.source} (force-driven)")
@@ -721,6 +723,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             res.refinement = {"done": False, "reason": "output-error refinement is not available in this version"}
     else:
         res.refinement = {"done": False, "reason": "skipped (--no-refine)"}
+    if tfit is not None and (said := curve_coverage(res.params, min(branch_ends, default=np.inf))):
+        res.notes.append(said)  # of the curve written (the refinement moves its knots' F_d)
 
     cost = {}
     if any(d.fit is not None for d in decisions.values()):
@@ -746,6 +750,28 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 
 
 MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not fit its levels
+CURVE_COVERS = 0.5  # a transition curve topping below this share of F_s⁺ − F_s⁻ is said to stop short
+
+
+def curve_coverage(p: FrictionParams, v_end: float) -> str:
+    """A note where the fitted transition curve tops out below CURVE_COVERS of the outer loop's
+    span F_s⁺ − F_s⁻ (the force F_d climbs towards over presliding: Table II's 100 N·m against
+    Table I's 36 + 63), or "": beyond its last knot the last segment's slope goes on, stiffer
+    than a curve bending into sliding. ``v_end``: the speed at which a branch was ended (0.3 ×
+    the slowest steady level), said because a position loop's presliding sines pass it — a
+    joint made apart had its curve stop at 0.168 mrad and 8.5 N·m of a 32 N·m span, its
+    sines reaching 4 mrad, and nothing said."""
+    tc = p.transition_curve
+    span = p.stribeck.positive.Fs - p.stribeck.negative.Fs
+    if tc.kind != "piecewise_linear" or not tc.F or not span > 0 or tc.F[-1] >= CURVE_COVERS * span:
+        return ""
+    unit = p.units.force
+    ends = (f"; a branch ends where its speed passes {v_end:.3g} (0.3 × the slowest steady level), and "
+            f"presliding moved faster (a position loop's sines) is not read as one" if math.isfinite(v_end) else "")
+    return (f"transition curve: its knots reach F_d = {tc.F[-1]:.4g}{(' ' + unit) if unit else ''} at z = {tc.z[-1]:.3g}, "
+            f"{tc.F[-1] / span:.0%} of F_s⁺ − F_s⁻ ({span:.4g}), towards which F_d climbs over presliding: beyond, its "
+            f"last segment's slope goes on, stiffer than a curve bending into sliding, so wider presliding is not "
+            f"estimated{ends}")
 MISFIT_CHI2_RED = 4.0  # a refinement leaving its residuals twice the noise floor: its σ are said to be of a misfit
 
 

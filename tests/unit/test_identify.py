@@ -351,3 +351,21 @@ def test_a_side_one_level_short_without_a_dip_keeps_its_own_decision():
     dec = fit_sides_honest(levels)
     assert dec["positive"].model == "Stribeck + viscous" and dec["negative"].model == "Coulomb + viscous"
     assert abs(dec["negative"].fit.values["Fc"] + 8e-3) < 5 * dec["negative"].fit.stderr["Fc"]
+
+
+def test_a_transition_curve_stopping_short_of_the_outer_loop_is_said():
+    # the paper's curve tops at 100 N·m against F_s⁺ − F_s⁻ = 36 + 63 = 99: covered, nothing
+    # said; one cut at its first knot (16.4 N·m, 17 %) is said, with the speed ending a branch
+    from leuven_friction.identify.fit import curve_coverage
+    from leuven_friction.model import TransitionCurve, default_params
+
+    p = default_params()
+    assert curve_coverage(p, 1e-3) == ""
+    cut = p.replace(transition_curve=TransitionCurve(z=tuple(TABLE_II_Z[:2]), F=tuple(TABLE_II_F[:2])))
+    said = curve_coverage(cut, 1e-3)
+    assert "F_d = 16.4 N*m" in said and "17% of F_s⁺ − F_s⁻ (99)" in said, said
+    # three knots (75.1 N·m, 76 %) cover enough
+    assert curve_coverage(p.replace(transition_curve=TransitionCurve(z=tuple(TABLE_II_Z[:3]), F=tuple(TABLE_II_F[:3]))),
+                          1e-3) == ""
+    assert "passes 0.001" in said
+    assert "passes" not in curve_coverage(cut, float("inf"))
