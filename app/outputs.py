@@ -11,6 +11,8 @@ behind, and a reader never sees half a file.
 
 from __future__ import annotations
 
+import json
+import math
 import os
 import stat
 import tempfile
@@ -141,8 +143,6 @@ def json_text(obj) -> str:
     """``obj`` as JSON that any reader parses: a value that is not a finite number (a regime
     too short for its noise floor: NaN) written as null, where ``json.dumps`` writes a bare
     ``NaN`` that JavaScript's and strict parsers refuse."""
-    import json
-    import math
 
     def finite(o):
         if isinstance(o, float):

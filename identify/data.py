@@ -208,11 +208,18 @@ def _reads_as_not_measured(key: str, sig: str) -> str:
     return ""
 
 
+def split_unit_word(key: str) -> tuple[list, str | None]:
+    """A header name without brackets as its words and the unit written as its last word
+    (``x_mm`` → (["x"], "mm")), or all its words and None."""
+    words = [w for w in key.split("_") if w]
+    return (words[:-1], words[-1]) if len(words) > 1 and words[-1] in UNITS else (words, None)
+
+
 def unit_word_of(key: str, sig: str) -> str | None:
     """The unit a header name without brackets writes as its last word, if a unit of signal
     ``sig`` (``force_kn`` → "kn" for a force; ``x_mm`` → "mm" for a position), else None."""
-    words = [w for w in key.split("_") if w]
-    return words[-1] if len(words) > 1 and words[-1] in UNITS and _fits(words[-1], sig) else None
+    word = split_unit_word(key)[1]
+    return word if _fits(word, sig) else None
 
 
 def _as_spelled(col: str, unit_word: str) -> str:
@@ -228,10 +235,7 @@ def recognise(key: str, unit: str | None = None) -> list:
     the alias ``t_oil`` in °C. A signal the bracketed unit is not a unit of is passed over
     (``tau_load [N*m]`` is no normal load), and so is a reference or an estimate (``q_ref``,
     ``friction_model``). [] when no word says."""
-    words = [w for w in key.split("_") if w]
-    word_unit = None
-    if unit is None and len(words) > 1 and words[-1] in UNITS:
-        word_unit, words = words[-1], words[:-1]
+    words, word_unit = split_unit_word(key) if unit is None else ([w for w in key.split("_") if w], None)
     base = "_".join(words)
     for sig, names in ALIASES.items():
         if word_unit is not None and base in names:  # a known name followed by its unit
@@ -661,11 +665,10 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 notes.append(f"{col}: every cell empty: not read")
                 continue
             notes.append(f"{col}: {len(bad)} of {len(values)} rows empty (a slower logger): only its readings are used")
-            bad = bad[:0]
-        if len(bad):
+        elif len(bad):
             r = int(bad[0])
             cell = raw.iloc[r]
-            what = ("is empty or NaN" if cell is None or (isinstance(cell, float) and np.isnan(cell)) or not str(cell).strip()
+            what = ("is empty or NaN" if _empty(cell)
                     else f"{str(cell)!r} is not a clock reading" if clock is not None
                     else f"{str(cell)!r} is not a finite number")
             raise DataError(

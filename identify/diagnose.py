@@ -3249,7 +3249,8 @@ def load_changing(load: np.ndarray) -> np.ndarray:
         mean = (c[w:] - c[:-w]) / w  # mean[i] = mean of load[i : i + w]
         diff = np.zeros(n)
         diff[w:n - w + 1] = np.abs(mean[w:] - mean[:-w])  # at i: load[i : i+w] against load[i-w : i]
-        changing |= diff > 5 * (step_sd / math.sqrt(2.0)) * math.sqrt(2.0 / w) + 1e-300
+        # the noise σ = step_sd/√2 of one sample gives the difference of two w-sample means σ·√(2/w)
+        changing |= diff > 5 * step_sd / math.sqrt(w) + 1e-300
     return changing
 
 
