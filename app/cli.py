@@ -73,6 +73,17 @@ def _table(result_runs, labels) -> dict:
     return table
 
 
+def _units_said(params) -> str:
+    """The units of the columns ``simulate`` writes (its header names carry none, so scripts
+    reading ``friction_force`` keep working): the parameter set's."""
+    u = params.units
+    pos, force = u.get("position"), u.get("force")
+    if not (pos and force):
+        return ""
+    t = u.get("time", "s")
+    return f" (in the parameter set's units: time {t}, position and z {pos}, velocity {pos}/{t}, forces {force})"
+
+
 def _write_table(table: dict, path: str) -> None:
     """CSV, or Parquet for a .parquet/.pq name; streamed into a file beside the target and
     renamed into place (nothing half-written)."""
@@ -115,7 +126,7 @@ def cmd_simulate(args) -> int:
         res = run_experiment(args.experiment, params)
         table = _table(res.runs, res.labels)
         _write_table(table, args.out)
-        print(f"{args.experiment} ({params.model}): {len(table['time'])} rows -> {args.out}")
+        print(f"{args.experiment} ({params.model}): {len(table['time'])} rows -> {args.out}{_units_said(params)}")
         return 0
     if not args.input:
         raise UserError("simulate: give --experiment NAME, --input REC.csv or --list")
@@ -162,7 +173,7 @@ def cmd_simulate(args) -> int:
     stages.done("simulated")
     _write_table(_table([r], [params.model]), args.out)
     stages.done(f"wrote {args.out}")
-    print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}")
+    print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}{_units_said(params)}")
     return 0
 
 

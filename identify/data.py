@@ -272,6 +272,13 @@ class Recording:
     units_assumed: str = ""  # the note of ``_assume_si`` where a header gave no unit (also in ``notes``)
     ignored: list = field(default_factory=list)  # the file's columns no signal was taken from
     ambiguous: dict = field(default_factory=dict)  # signal -> columns whose names could each be it
+    turned: set = field(default_factory=set)  # signals taken with their sign turned (``--columns force=-F``)
+
+    def sign_mend(self, sig: str) -> str:
+        """The ``--columns`` option that turns signal ``sig``'s sign from the way it was read: the
+        column negated, or, where it was taken negated as asked, taken as it is (a pneumatic
+        slide's force turned by the user was told to turn it again, the same option)."""
+        return columns_option(sig, self.columns.get(sig, "<column>"), sig not in self.turned)
 
     def unrecognised(self, *signals: str) -> str:
         """Why none of the file's columns was taken as one of ``signals``, for a message."""
@@ -677,6 +684,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             )
         if sig in negated:
             values = -values
+            rec.turned.add(sig)
             notes.append(f"{col}: taken as {sig} with its sign turned, as asked ({columns_option(sig, col, True)})")
         unit = (units or {}).get(sig) or headers[col][1]
         if col == cof:

@@ -89,9 +89,10 @@ from ..model.errors import ParameterError
 from ..model.params import get_value
 from ..model.simulate import stribeck_curve
 from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_friction, format_values, significant_reversals
-from .data import DataError, Recording, columns_option, header_unit, is_mass, may_be_load
+from .data import DataError, Recording, header_unit, is_mass, may_be_load
 from .errors import IdentificationError
-from .segment import (across_gaps, checked_threshold, gap_threshold, gross_sliding_mask, piecewise_slope, speed_levels,
+from .segment import (GRID_UNDER_NOISE, across_gaps, checked_threshold, gap_threshold, gross_sliding_mask, piecewise_slope,
+                      speed_levels,
                       steady_velocity_mask, time_gaps)
 from .threads import one_blas_thread
 
@@ -546,7 +547,12 @@ class MotionReading:
         coarse = (f" (one encoder step per {cp.window} samples is {per_window:.3g}{v}: slower sliding reads as rest "
                   f"here; a longer window lowers it)"
                   if per_window > self.v_noise and not {"window", "v_rest"} & set(self.set_by_user) else "")
-        return (f"position noise {cp.sd:.3g}{x} ({f'encoder step {cp.step:.3g}{x}' if cp.step > 0 else 'no encoder step'}); "
+        # a grid finer than the noise on it is the file's digits, not an encoder (as `fit` reads
+        # it, ``segment.detect_noise``): a 2 µm sensor written in inches to 10⁻⁶ was said to have
+        # an encoder step of 2.54·10⁻⁸ m
+        grid = ("no encoder step" if cp.step <= 0 else f"encoder step {cp.step:.3g}{x}" if cp.sd <= GRID_UNDER_NOISE * cp.step
+                else f"written to steps of {cp.step:.3g}{x}, finer than its noise: no encoder's")
+        return (f"position noise {cp.sd:.3g}{x} ({grid}); "
                 f"path smoothed over {cp.window} samples{mark('window')} and wiggles below {2 * cp.h:.3g}{x} removed; "
                 f"|v| < {self.v_rest:.3g}{v}{mark('v_rest')} counts as presliding{coarse}; a reversal counts from "
                 f"{used:.3g}{x}{mark('min_excursion')}{because} of back-travel (settable: `diagnose --threshold "
@@ -866,9 +872,23 @@ class InertiaReading(NamedTuple):
     estimate: InertiaEstimate | None
     why: str = ""
     no_inertial_term: bool = False
-    # both windows negative, within 10 % of each other and REVERSED_SIGMAS σ clear of 0: the
-    # force follows the acceleration as −I does, an applied force logged with the other sign
+    # both windows negative, and each REVERSED_SIGMAS σ clear of 0 or the force against the
+    # motion in sliding both ways (``against_motion``): an applied force logged with the other sign
     reversed: InertiaEstimate | None = None
+    against_motion: bool = False
+
+
+def force_against_motion(f: np.ndarray, v: np.ndarray, v_rest: float, least: int = 50) -> bool:
+    """Whether the applied force pushes against the motion while sliding, both ways: its median
+    times the velocity's sign negative over the samples moving forwards (|v| > ``v_rest``) and
+    over those moving backwards. Sliding dissipates, so a force pushing the way the position
+    increases (eq. (8)) has the velocity's sign there; a weight the drive holds turns one side,
+    not both. False with under ``least`` samples either way."""
+    for s in (1.0, -1.0):
+        m = s * v > v_rest
+        if int(m.sum()) < least or not np.median(s * f[m]) < 0:
+            return False
+    return True
 
 
 def inertia_from_force(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float) -> InertiaEstimate | None:
@@ -925,12 +945,19 @@ def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: fl
     agree = abs(I1 - I2) <= 0.1 * abs(I2)
     if I1 <= 0 or I2 <= 0:
         why = f"the force regressed on the acceleration gives no positive inertia ({I1:.3g} and {I2:.3g})"
-        if I1 < 0 and I2 < 0 and agree:
+        if I1 < 0 and I2 < 0:
             # a measured friction read as the applied force has no inertial term: its readings
-            # scatter about 0; a force of the other sign reads −I, the same in both windows
+            # scatter about 0; a force of the other sign reads −I in both windows, each far from
+            # 0 — not within 10 % of each other where something else follows the acceleration,
+            # as it moves a positive pair apart (a pneumatic slide's reversed force read −8.15
+            # and −9.11, and was fitted as a force with no levels, exit 0)
             sd = jackknife_sd()
-            if -I2 > REVERSED_SIGMAS * sd:
-                return InertiaReading(None, why, no_inertial_term=True, reversed=InertiaEstimate(I2, sd))
+            # (or, where the readings are not that clear of 0, the force against the motion
+            # both ways: the same slide's −9.11 was 2.7 σ from 0)
+            against = force_against_motion(f, v, v_rest)
+            if min(-I1, -I2) > REVERSED_SIGMAS * sd or against:
+                return InertiaReading(None, why, no_inertial_term=True, reversed=InertiaEstimate(I2, sd),
+                                      against_motion=against)
         return InertiaReading(None, why, no_inertial_term=True)
     if not agree:
         n1, n2 = est
@@ -953,8 +980,10 @@ def reversed_force(rec: Recording, reading: InertiaReading) -> str | None:
     col = rec.columns.get("force", "force")
     return (f"{rec.source}: the applied force {col!r} pushes the position down: regressed on the acceleration it reads "
             f"an inertia of {r.value:.3g} ± {r.stderr:.2g}, which is negative (I·ẍ = f − F, eq. (8), takes a force "
-            f"pushing the way the position increases): negate the column in the file (or turn its sign with "
-            f"{columns_option('force', col, True)})")
+            f"pushing the way the position increases)"
+            + (", and while sliding it pushes against the motion both ways, where sliding takes a force pushing "
+               "the way it moves" if reading.against_motion else "")
+            + f": negate the column in the file (or turn its sign with {rec.sign_mend('force')})")
 
 
 def mean_acceleration(v: np.ndarray, t: np.ndarray, L: int) -> np.ndarray:
@@ -1036,6 +1065,22 @@ class Term:
             if x >= hi - tol or x <= lo + tol:
                 out.add(pname)
         return out
+
+    def pinned(self, u: np.ndarray) -> str | None:
+        """Which of the term's free parameters in its part ``u`` of a fit ended at an end of
+        their range, besides the settling scale (``unsettled`` speaks of that), in words, or
+        None: the bound holds them there, not the data, and they get no σ (``effect_sds``) — a
+        pneumatic slide's load session had a softening named with h = −0.9 and nothing said."""
+        ends = []
+        for (pname, tr, lo, hi), x in zip(self.free, u):
+            if pname == self.settles or pname not in self.at_bounds(np.asarray(u)):
+                continue
+            a, b = self.value(pname, tr, lo), self.value(pname, tr, hi)
+            ends.append(f"{pname} at {a if x <= 0.5 * (lo + hi) else b:.3g} (its range {a:.3g} … {b:.3g})")
+        if not ends:
+            return None
+        return (f"{self.name}: {', '.join(ends)}: the end of the range holds it there, not the data, so it has no σ; "
+                f"the residual asks more of this effect's form than it gives, and may be something else's")
 
     def bound(self, u: np.ndarray) -> str | None:
         """Where the ``settles`` scale of the term's part ``u`` of a fit ended: "upper", "lower"
@@ -3880,6 +3925,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                       "heldout_gain": winner.heldout_gain, "sd": sds.get(winner.name, {}),
                       "params_decided": dict(winner.fit.entries[-1]["params"]),
                       "folds": f"{winner.folds_improved}/{winner.folds_informative}"})
+        if (said := cur_terms[-1].pinned(_entry_to_u(cur_terms[-1], refit.entries[-1]["params"]))):
+            cmp_.notes.append(said)
         scored.append(refit.pred)
         fits.append((list(cur_terms), refit.u))
     say(0.95, "refitting the model that is written (without the free steady curve)")

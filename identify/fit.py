@@ -23,7 +23,7 @@ from scipy.stats import spearmanr
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
 from ..model.params import get_value, spec_of
 
-from .data import Recording, columns_option
+from .data import Recording
 from .errors import IdentificationError
 from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, stribeck_plus_viscous
 from .mle import Gaussian, PreslidingData, fit_transition_curve
@@ -138,7 +138,7 @@ def sign_hint(prep: Prepared, levels: Levels) -> str:
         return (f"every steady run's applied force ({levels.opposing}) opposes its velocity, where sliding takes a "
                 f"force pushing the way it moves: the force column likely has the other sign (the model's applied "
                 f"force pushes the position up): negate the column in the file (or turn its sign with "
-                f"{columns_option('force', prep.rec.columns.get('force', '<column>'), True)})")
+                f"{prep.rec.sign_mend('force')})")
     taken = "reaction (flipped)" if prep.sign_flipped else "action"
     return (f"every steady run's friction ({levels.opposing}) opposes its velocity with the friction "
             f"taken as {taken}: the column likely has the other sign (--friction-sign auto detects it, or force "
@@ -901,7 +901,10 @@ def fit_report(res: FitResult) -> str:
     lines.append(f"    units                    : position {u.get('position')}, force {u.get('force')}, time {u.get('time')}")
     if res.levels is not None:
         lines.append(f"    levels of S(v)           : {len(res.levels.velocity)}")
-    lines.append(f"    presliding branches used : {res.n_branches}")
+    entered = sum(len(d.branches) for d in res.datasets)
+    lines.append(f"    presliding branches used : {res.n_branches}"
+                 + (f" ({entered} entered the likelihood, which did not determine the curve from them: see the "
+                    f"notes)" if entered and not res.n_branches else ""))
     for side, dec in res.decisions.items():
         if dec.fit is not None:
             lines.append(f"    Markov chi2 ({side})  : {dec.fit.chi2:.3g} for {dec.fit.dof} degrees of freedom ({dec.model})")

@@ -72,8 +72,10 @@ def test_cli_list_and_experiment_csv(tmp_path, capsys):
     for name in ("abcd_ramp", "stick_slip", "tracking", "frictional_lag", "breakaway"):
         assert name in stdout
     out = tmp_path / "abcd.csv"
-    rc, _, err = cli(capsys, "simulate", "--experiment", "abcd_ramp", "--model", "lugre", "--out", out)
+    rc, stdout, err = cli(capsys, "simulate", "--experiment", "abcd_ramp", "--model", "lugre", "--out", out)
     assert rc == 0, err
+    # the columns keep their bare names; their units (the built-in set's, the paper's joint) are said
+    assert "time s, position and z rad, velocity rad/s, forces N*m" in stdout, stdout
     df = pd.read_csv(out)
     assert list(df.columns) == ["time", "position", "velocity", "applied_force", "friction_force", "hysteresis_force", "z"]
     assert df["applied_force"].max() == pytest.approx(30.0, abs=1e-3)

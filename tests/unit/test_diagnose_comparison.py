@@ -1407,3 +1407,34 @@ def test_a_load_ramping_under_its_noise_per_sample_counts_as_changing():
         ~((t > 12 - half_window - 0.01) & (t < 12 + half_window + 0.01))
     assert changing[holds].mean() < 0.001, changing[holds].sum()
     assert not load_changing(np.full(1000, 5.0)).any()
+
+
+def test_a_force_against_the_motion_both_ways_is_told_from_a_weight_held_one_way():
+    # sliding dissipates: an applied force pushing the way the position increases has the
+    # velocity's sign in sliding, on both sides; a weight the drive holds turns one side only
+    from leuven_friction.identify.diagnose import force_against_motion
+
+    rng = np.random.default_rng(3)
+    v = np.concatenate([np.full(400, 0.02), np.zeros(200), np.full(400, -0.02)]) + rng.normal(0, 1e-3, 1000)
+    friction = 5.0 * np.sign(v) + rng.normal(0, 0.5, 1000)
+    assert not force_against_motion(friction, v, 5e-3)
+    assert force_against_motion(-friction, v, 5e-3)
+    weight = 20.0  # more than the friction: the force holds it up both ways
+    assert not force_against_motion(weight + friction, v, 5e-3)
+    assert not force_against_motion(-(weight + friction), v, 5e-3)
+    # too few samples either way: not told
+    assert not force_against_motion(-friction[:430], v[:430], 5e-3)
+
+
+def test_an_effect_parameter_held_at_an_end_of_its_range_is_said_with_that_range():
+    import math
+
+    from leuven_friction.identify.diagnose import Term
+
+    term = Term("cyclic_softening", {}, (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(0.05), math.log(5.0))),
+                settles="n_c", refs={"n_c": 10.0})
+    said = term.pinned(np.array([-0.9, 0.0]))
+    assert said is not None and "h at -0.9 (its range -0.9 … 5)" in said and "no σ" in said, said
+    assert term.pinned(np.array([-0.3, 0.0])) is None
+    # the settling scale at its bound is ``unsettled``'s to say, not this
+    assert term.pinned(np.array([-0.3, math.log(5.0)])) is None

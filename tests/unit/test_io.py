@@ -569,3 +569,16 @@ def test_a_column_named_as_asked_reads_its_unit_from_its_name(tmp_path, header, 
     np.testing.assert_allclose(rec.force, sign["force"] * 200.0)  # 0.2 kN
     np.testing.assert_allclose(rec.position[:3], sign["position"] * np.array([0.0, 0.5e-3, 1e-3]))  # mm
     assert not rec.units_assumed and rec.units["force"] == "N" and rec.units["position"] == "m"
+
+
+def test_the_sign_mend_turns_a_column_back_where_it_was_taken_turned(tmp_path):
+    # a force taken with its sign turned (--columns force=-F) and found the wrong way round is
+    # mended by taking the column as it is, not by turning it again
+    from leuven_friction.identify.data import load_recording
+
+    path = tmp_path / "r.csv"
+    path.write_text("t [s],x [m],F [N]\n" + "".join(f"{i * 0.01},{i * 1e-4},{(-1) ** i}\n" for i in range(20)))
+    as_is = load_recording(path)
+    assert as_is.sign_mend("force") == '--columns "force=-F [N]"'
+    turned = load_recording(path, columns={"force": "-F"})
+    assert turned.force[0] == -1.0 and turned.sign_mend("force") == '--columns "force=F [N]"'
