@@ -92,8 +92,7 @@ from ..model.effects import EFFECTS, Context, Signals, effect_scales, follows_fr
 from .data import DataError, Recording, header_unit, is_mass, may_be_load
 from .errors import IdentificationError
 from .segment import (GRID_UNDER_NOISE, across_gaps, checked_threshold, gap_threshold, gross_sliding_mask, piecewise_slope,
-                      speed_levels,
-                      steady_velocity_mask, time_gaps)
+                      speed_levels, steady_velocity_mask, time_gaps)
 from .threads import one_blas_thread
 
 
@@ -983,7 +982,10 @@ def reversed_force(rec: Recording, reading: InertiaReading) -> str | None:
             f"pushing the way the position increases)"
             + (", and while sliding it pushes against the motion both ways, where sliding takes a force pushing "
                "the way it moves" if reading.against_motion else "")
-            + f": negate the column in the file (or turn its sign with {rec.sign_mend('force')})")
+            + f": negate the column in the file (or turn its sign with {rec.sign_mend('force')})"
+            # a measured friction of the reaction sign also pushes against the motion, and its
+            # readings scatter about 0: where they are not clear of it, that is said as well
+            + ("" if -r.value > REVERSED_SIGMAS * r.stderr else f"; {NAME_IT_FRICTION}"))
 
 
 def mean_acceleration(v: np.ndarray, t: np.ndarray, L: int) -> np.ndarray:
