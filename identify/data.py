@@ -31,7 +31,8 @@ UNITS = {
     "s": (1.0, "s"), "sec": (1.0, "s"), "ms": (1e-3, "s"), "us": (1e-6, "s"), "µs": (1e-6, "s"), "min": (60.0, "s"),
     "m": (1.0, "m"), "mm": (1e-3, "m"), "um": (1e-6, "m"), "µm": (1e-6, "m"), "micron": (1e-6, "m"), "nm": (1e-9, "m"),
     "rad": (1.0, "rad"), "mrad": (1e-3, "rad"), "urad": (1e-6, "rad"), "µrad": (1e-6, "rad"),
-    "deg": (np.pi / 180, "rad"), "°": (np.pi / 180, "rad"),
+    "deg": (np.pi / 180, "rad"), "°": (np.pi / 180, "rad"), "degree": (np.pi / 180, "rad"),
+    "degrees": (np.pi / 180, "rad"),
     # a telescope's or an optical stage's angle: minutes and seconds of arc (′ and ″, the primes,
     # not the quotes a CSV writes its fields in)
     "arcmin": (np.pi / 10800, "rad"), "arcminute": (np.pi / 10800, "rad"), "arcminutes": (np.pi / 10800, "rad"),
@@ -628,6 +629,15 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             (col, name), = counted[:1]
             raise DataError(f"{path}: no column for {', '.join(missing)}: column {col!r} counts steps without saying "
                             f"their size: {_counts_fix(name)}")
+        # a column whose name says a missing signal, passed over for a unit not known here (a
+        # valve's 'stem_angle [degrees]' was told "no column for position", and only once named
+        # with --columns that its unit was unknown)
+        unknown = [(c, unit) for c in in_file for key, unit in [_split_header(c)]
+                   if unit is not None and unit_of(unit, "position") is None and unit_of(unit, "force") is None
+                   and any(sig in missing for sig, _ in recognise(key.lower()))]
+        if unknown:
+            (col, unit), = unknown[:1]
+            raise DataError(f"{path}: column {col!r}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
         raise DataError(
             f"{path}: no column for {', '.join(missing)} (columns: {_listing(in_file)}{could}; "
             f"name them with --columns {missing[0]}=<column>)"
@@ -702,6 +712,11 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                                     f"{_counts_fix(headers[col][0])}")
                 if is_current_unit(unit) and sig in ("force", "friction"):
                     raise DataError(f"{path}: column {col!r}: unit {unit!r}: {_current_fix(headers[col][0], unit)}")
+                if is_current_unit(unit) and sig == "normal_load":
+                    # (a valve's motor current named as its load was told "unknown unit 'A'")
+                    raise DataError(f"{path}: column {col!r}: unit {unit!r} is a current, not a load: a motor's current "
+                                    f"drives the motion, the normal load is the force pressing the contact (N, or a "
+                                    f"moment in N·m): name the load's own column with --columns normal_load=<column>")
                 if is_mass_unit(unit) and sig in ("force", "friction", "normal_load"):
                     # a payload's mass is not the load on the contact: the carriage's own weight presses it too
                     what = ("the normal load is the force pressing the contact: the whole moving mass on it (carriage "

@@ -642,7 +642,15 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         held["n"] = (f"{why_curve}: held at the paper's {p.n:g}, the exponent of the curve held beside it"
                      if base is None else f"{why_curve}: kept {start}")
     else:
-        held["transition_curve"] = f"{why_curve}: kept {start}"
+        top, Fs = p.transition_curve.F[-1] if p.transition_curve.F else math.nan, max(
+            abs(p.stribeck.positive.Fs), abs(p.stribeck.negative.Fs))
+        # a curve kept from another machine beside this fit's F_s (a valve's 539 N·m beside the
+        # paper's curve topping at 100 N·m was written unsaid, which `diagnose` then warned of)
+        under = (f"; it tops at F_d = {top:.4g}, under half of this fit's |F_s| = {Fs:.4g}: presliding past its last "
+                 f"knot follows its last segment (presliding recorded — slow force ramps, or small reversals of a "
+                 f"motion with measured friction — would set this machine's)"
+                 if p.transition_curve.kind == "piecewise_linear" and top < 0.5 * Fs else "")
+        held["transition_curve"] = f"{why_curve}: kept {start}{under}"
         held["n"] = f"{why_curve}: kept {start}"
     if all(d.fit is None for d in decisions.values()) and tfit is None:
         files = ", ".join(str(pr.source) for pr in preps)
@@ -920,6 +928,16 @@ def fit_report(res: FitResult) -> str:
                          f"{to_its_sd(val, unc.get(path, float('nan'))):>12s} ± {unc.get(path, float('nan')):<9.2g}")
         # the unit from the parameter schema, in the units of the data (N·m or N, rad/s or m/s, …)
         lines.append(f"    {k:10s} {cells[0]} {cells[1]}   {spec_of(res.params, f'stribeck.positive.{k}').unit}")
+    # the χ² above and the correlations below are the Markov step's: where the refinement moved
+    # S(v), its values are given beside them (a valve's report read χ² 140 for 11 and "misfits
+    # the levels" beside refined values whose fit to the levels was not given)
+    moved = [f"{side} " + ", ".join(f"{k} {v:.4g}" for k, v in dec.fit.values.items())
+             for side, dec in res.decisions.items() if dec.fit is not None
+             and any(not math.isclose(v, getattr(getattr(res.params.stribeck, side), k), rel_tol=1e-9)
+                     for k, v in dec.fit.values.items())]
+    if moved:
+        lines.append("    (the output-error refinement's values; the Markov chi2 above, the correlations and the notes "
+                     f"on the levels are of the Markov step's: {'; '.join(moved)})")
     corr_lines = []
     for side, dec in res.decisions.items():
         if dec.fit is None:

@@ -574,11 +574,33 @@ def test_a_column_named_as_asked_reads_its_unit_from_its_name(tmp_path, header, 
 def test_the_sign_mend_turns_a_column_back_where_it_was_taken_turned(tmp_path):
     # a force taken with its sign turned (--columns force=-F) and found the wrong way round is
     # mended by taking the column as it is, not by turning it again
-    from leuven_friction.identify.data import load_recording
-
     path = tmp_path / "r.csv"
     path.write_text("t [s],x [m],F [N]\n" + "".join(f"{i * 0.01},{i * 1e-4},{(-1) ** i}\n" for i in range(20)))
     as_is = load_recording(path)
     assert as_is.sign_mend("force") == '--columns "force=-F [N]"'
     turned = load_recording(path, columns={"force": "-F"})
     assert turned.force[0] == -1.0 and turned.sign_mend("force") == '--columns "force=F [N]"'
+
+
+def test_an_angle_in_degrees_spelled_out_is_read_and_an_unknown_unit_is_named_at_once(tmp_path):
+    # a valve's 'stem_angle [degrees]' was told "no column for position", and only once named with
+    # --columns that its unit was unknown; 'degree(s)' is now a spelling of deg
+    rows = "".join(f"{i * 0.01},{i * 0.5},{(-1) ** i}\n" for i in range(20))
+    ok = tmp_path / "deg.tsv"
+    ok.write_text("time [s],stem_angle [degrees],stem_torque [N*m]\n" + rows)
+    rec = load_recording(ok)
+    assert rec.units["position"] == "rad" and rec.position[1] == pytest.approx(0.5 * np.pi / 180)
+    bad = tmp_path / "furlong.tsv"
+    bad.write_text("time [s],stem_angle [furlong],stem_torque [N*m]\n" + rows)
+    with pytest.raises(DataError) as e:
+        load_recording(bad, require=("time", "position"))
+    assert "column 'stem_angle [furlong]': unknown unit 'furlong'" in str(e.value), str(e.value)
+
+
+def test_a_current_named_as_the_load_is_told_it_is_no_load(tmp_path):
+    path = tmp_path / "c.csv"
+    path.write_text("time [s],x [m],F [N],motor_current [A]\n" + "".join(f"{i * 0.01},{i * 1e-4},1,2\n" for i in range(20)))
+    with pytest.raises(DataError) as e:
+        load_recording(path, columns={"normal_load": "motor_current [A]"})
+    msg = str(e.value)
+    assert "is a current, not a load" in msg and "--columns normal_load=" in msg and "\n" not in msg, msg
