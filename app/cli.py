@@ -73,9 +73,15 @@ def _table(result_runs, labels) -> dict:
     return table
 
 
-def _units_said(params) -> str:
+def _units_said(params, rec=None) -> str:
     """The units of the columns ``simulate`` writes (its header names carry none, so scripts
-    reading ``friction_force`` keep working): the parameter set's."""
+    reading ``friction_force`` keep working): the parameter set's — not said where a recording
+    ``rec`` driving it is of another kind of machine (its columns are then in its own units)."""
+    if rec is not None:
+        from ..identify.data import other_kind_of_machine
+
+        if other_kind_of_machine(params.units, rec.units):
+            return ""
     u = params.units
     pos, force = u.get("position"), u.get("force")
     if not (pos and force):
@@ -173,7 +179,7 @@ def cmd_simulate(args) -> int:
     stages.done("simulated")
     _write_table(_table([r], [params.model]), args.out)
     stages.done(f"wrote {args.out}")
-    print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}{_units_said(params)}")
+    print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}{_units_said(params, rec)}")
     return 0
 
 

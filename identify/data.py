@@ -631,13 +631,18 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                             f"their size: {_counts_fix(name)}")
         # a column whose name says a missing signal, passed over for a unit not known here (a
         # valve's 'stem_angle [degrees]' was told "no column for position", and only once named
-        # with --columns that its unit was unknown)
-        unknown = [(c, unit) for c in in_file for key, unit in [_split_header(c)]
+        # with --columns that its unit was unknown): said beside the usual advice, where it is
+        # the only such column and none could each be the signal (a current, a mass or a count
+        # has its own message once the column is named)
+        unknown = [(c, unit, sig) for c in in_file for key, unit in [_split_header(c)]
                    if unit is not None and unit_of(unit, "position") is None and unit_of(unit, "force") is None
-                   and any(sig in missing for sig, _ in recognise(key.lower()))]
-        if unknown:
-            (col, unit), = unknown[:1]
-            raise DataError(f"{path}: column {col!r}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
+                   and not is_current_unit(unit) and not is_mass_unit(unit)
+                   for sig, _ in recognise(key.lower())[:1] if sig in missing]
+        if len(unknown) == 1 and not could:
+            (col, unit, sig), = unknown
+            raise DataError(f"{path}: no column for {', '.join(missing)}: column {col!r} reads as {sig} by its name, "
+                            f"but its unit {unit!r} is not known (known: {UNITS_ACCEPTED}); correct the header, or name "
+                            f"the {sig} with --columns {sig}=<column>")
         raise DataError(
             f"{path}: no column for {', '.join(missing)} (columns: {_listing(in_file)}{could}; "
             f"name them with --columns {missing[0]}=<column>)"

@@ -598,9 +598,11 @@ def motion_reading(rec: Recording, overrides: dict | None = None) -> MotionReadi
     tacho = None
     if rec.velocity is not None:
         vt = np.asarray(rec.velocity, dtype=np.float64)
-        # use the tachometer where it is quieter than the differentiated position
+        # use the tachometer where it is quieter than the differentiated position, and runs the
+        # way the position does (one logged with the other sign made a correct force read a
+        # negative inertia, and be refused as pushing the position down)
         vt_noise = _mad_sd(np.diff(vt)) / math.sqrt(2)
-        if vt_noise < v_noise:
+        if vt_noise < v_noise and np.dot(vt, vel) > 0:
             tacho = (vt, vt_noise)
     return MotionReading(t, x, dt, cp, vel, v_noise, v_rest, user.get("min_excursion", 4.0 * max(cp.sd, cp.step)),
                          tacho, tuple(user))
@@ -610,6 +612,11 @@ def motion_reading(rec: Recording, overrides: dict | None = None) -> MotionReadi
 # words of a force column's name that say it is applied, not measured friction
 APPLIED_WORDS = frozenset(("drive", "motor", "applied", "actuator", "servo", "cmd", "command", "commanded", "setpoint",
                            "demand", "control", "input"))
+def words_of(column: str) -> set:
+    """The lower-case words of a column's name (``APPLIED_WORDS`` are looked for among them)."""
+    return set(re.split(r"[^a-z]+", str(column).lower()))
+
+
 NAME_IT_FRICTION = ("if it is measured friction, name it so (friction, friction_torque) or pass "
                     "--columns friction=<column>")
 
@@ -631,14 +638,13 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
     f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
     longest = averaging_limit(m.t, m.compared.path, m.min_excursion)
     L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
-    reading = inertia_read(f, vel, m.t, L0, m.v_rest)
+    reading = inertia_read(f, vel, m.t, L0, m.v_rest, v_motion=m.velocity)
     reversed_why = reversed_force(rec, reading)
     if reversed_why:
         raise DataError(reversed_why)
     est = reading.estimate
     # (not said of a column whose name says it is applied: a drive's or a motor's torque)
-    words = set(re.split(r"[^a-z]+", str(rec.columns.get("force", "")).lower()))
-    friction_named_force = ("" if words & APPLIED_WORDS else
+    friction_named_force = ("" if words_of(rec.columns.get("force", "")) & APPLIED_WORDS else
                             f"; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}")
     if rec.normal_load is not None:
         # friction that follows a load changing along the record is a slow part of the force the
@@ -768,6 +774,7 @@ def _compared(rec: Recording, params: FrictionParams, space: str, m: MotionReadi
     if rec.force is None:
         raise DataError(f"{rec.source}: diagnosis needs a friction column, or an applied force column")
     f = np.asarray(rec.force, dtype=np.float64)
+    v_path = vel  # the position's own slope: the motion's direction (``inertia_read``)
     if m.tachometer:
         vel, v_noise = m.tachometer
         notes.append("velocity from the velocity column (quieter than the smoothed position)")
@@ -776,7 +783,7 @@ def _compared(rec: Recording, params: FrictionParams, space: str, m: MotionReadi
     L0 = averaging_length(0.0, f_sd, v_noise, dt, w, len(t), longest)
     # the model-free reading (at the shortest window): a force of the other sign is refused in
     # either space, as `fit` refuses it (``reversed_force``)
-    reading0 = inertia_read(f, vel, t, L0, v_rest)
+    reading0 = inertia_read(f, vel, t, L0, v_rest, v_motion=v_path)
     reversed_why = reversed_force(rec, reading0)
     if reversed_why:
         raise DataError(reversed_why)
@@ -875,6 +882,7 @@ class InertiaReading(NamedTuple):
     # motion in sliding both ways (``against_motion``): an applied force logged with the other sign
     reversed: InertiaEstimate | None = None
     against_motion: bool = False
+    clear: bool = False  # both readings REVERSED_SIGMAS σ clear of 0
 
 
 def force_against_motion(f: np.ndarray, v: np.ndarray, v_rest: float, least: int = 50) -> bool:
@@ -895,7 +903,8 @@ def inertia_from_force(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_re
     return inertia_read(f, v, t, L, v_rest).estimate
 
 
-def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float) -> InertiaReading:
+def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: float,
+                 v_motion: np.ndarray | None = None) -> InertiaReading:
     """The inertia I of eq. (8) from the recording alone (and where there is none, why): while
     sliding steadily the friction is a function of the velocity, S(v), so the averaged applied
     force is I·(mean acceleration) plus the averaged steady curve; it is regressed on the mean
@@ -951,12 +960,16 @@ def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: fl
             # as it moves a positive pair apart (a pneumatic slide's reversed force read −8.15
             # and −9.11, and was fitted as a force with no levels, exit 0)
             sd = jackknife_sd()
-            # (or, where the readings are not that clear of 0, the force against the motion
-            # both ways: the same slide's −9.11 was 2.7 σ from 0)
-            against = force_against_motion(f, v, v_rest)
-            if min(-I1, -I2) > REVERSED_SIGMAS * sd or against:
+            # (or, where the readings are only REVERSED_AGAINST_SIGMAS σ clear of 0, the force
+            # against the motion both ways: the same slide's −9.11 was 2.7 σ from 0). The motion's
+            # direction is the position's own (``v_motion``), not a velocity column's, whose sign
+            # may be the one logged the other way
+            clear = min(-I1, -I2) > REVERSED_SIGMAS * sd
+            against = (min(-I1, -I2) > REVERSED_AGAINST_SIGMAS * sd
+                       and force_against_motion(f, v if v_motion is None else v_motion, v_rest))
+            if clear or against:
                 return InertiaReading(None, why, no_inertial_term=True, reversed=InertiaEstimate(I2, sd),
-                                      against_motion=against)
+                                      against_motion=against, clear=clear)
         return InertiaReading(None, why, no_inertial_term=True)
     if not agree:
         n1, n2 = est
@@ -967,6 +980,7 @@ def inertia_read(f: np.ndarray, v: np.ndarray, t: np.ndarray, L: int, v_rest: fl
 
 
 REVERSED_SIGMAS = 5.0  # a negative inertia this many σ from 0 is a force of the other sign, not noise
+REVERSED_AGAINST_SIGMAS = 2.0  # … or this many, where the force also pushes against the motion both ways
 
 
 def reversed_force(rec: Recording, reading: InertiaReading) -> str | None:
@@ -983,9 +997,11 @@ def reversed_force(rec: Recording, reading: InertiaReading) -> str | None:
             + (", and while sliding it pushes against the motion both ways, where sliding takes a force pushing "
                "the way it moves" if reading.against_motion else "")
             + f": negate the column in the file (or turn its sign with {rec.sign_mend('force')})"
-            # a measured friction of the reaction sign also pushes against the motion, and its
-            # readings scatter about 0: where they are not clear of it, that is said as well
-            + ("" if -r.value > REVERSED_SIGMAS * r.stderr else f"; {NAME_IT_FRICTION}"))
+            # a measured friction of the reaction sign also pushes against the motion (and its
+            # frictional lag may follow the acceleration): that is said as well, unless the
+            # column's name says it is applied (a drive's, a motor's)
+            + ("" if (reading.clear and not reading.against_motion) or words_of(col) & APPLIED_WORDS
+               else f"; {NAME_IT_FRICTION}"))
 
 
 def mean_acceleration(v: np.ndarray, t: np.ndarray, L: int) -> np.ndarray:
@@ -1075,7 +1091,10 @@ class Term:
         pneumatic slide's load session had a softening named with h = −0.9 and nothing said."""
         ends = []
         for (pname, tr, lo, hi), x in zip(self.free, u):
-            if pname == self.settles or pname not in self.at_bounds(np.asarray(u)):
+            # (a ripple's cs, cc are coordinates of its a and phase, not parameters of its own; a
+            # drift's b at a bound is ``unsettled``'s to say)
+            if (pname == self.settles or pname not in self.at_bounds(np.asarray(u)) or self.name == "position_ripple"
+                    or (self.settles == "tau" and pname == "b")):
                 continue
             a, b = self.value(pname, tr, lo), self.value(pname, tr, hi)
             ends.append(f"{pname} at {a if x <= 0.5 * (lo + hi) else b:.3g} (its range {a:.3g} … {b:.3g})")
@@ -3927,8 +3946,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                       "heldout_gain": winner.heldout_gain, "sd": sds.get(winner.name, {}),
                       "params_decided": dict(winner.fit.entries[-1]["params"]),
                       "folds": f"{winner.folds_improved}/{winner.folds_informative}"})
-        if (said := cur_terms[-1].pinned(_entry_to_u(cur_terms[-1], refit.entries[-1]["params"]))):
-            cmp_.notes.append(said)
+        if (said := cur_terms[-1].pinned(_entry_to_u(cur_terms[-1], winner.fit.entries[-1]["params"]))):
+            cmp_.notes.append(said)  # (of the values σ belong to: ``effect_sds``)
         scored.append(refit.pred)
         fits.append((list(cur_terms), refit.u))
     say(0.95, "refitting the model that is written (without the free steady curve)")

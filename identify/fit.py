@@ -49,6 +49,7 @@ class FitResult:
     held: dict = field(default_factory=dict)  # dotted parameter path -> reason
     decisions: dict = field(default_factory=dict)  # side -> markov.SideDecision
     refinement: dict = field(default_factory=dict)
+    branches_tried: int = 0  # branches the transition curve's likelihood was maximised over (0: never ran)
 
     @property
     def status(self) -> dict:
@@ -521,6 +522,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         notes.append(f"{len(slid)} presliding branch(es) moved over {BRANCH_SPAN_RATIO:g}× the median branch "
                      f"({'; '.join(slid)}): they slid, left out of the transition curve's likelihood")
     n_br = sum(len(d.branches) for d in datasets)
+    tried = 0
     tfit = None
     unresolved = None
     sensor_resolution = min((d.x_noise for d in datasets), default=math.nan)  # the finest position sensor's
@@ -551,6 +553,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             return fit_transition_curve(datasets, knots_z, n=n, fit_n=fit_n)
 
         tfit = refit(z)
+        tried = n_br
         if knots is not None and tfit.beyond:
             # knots the user placed are kept as given, and what the data say of them is said
             notes.append(f"transition curve: the knot(s) given at z = {', '.join(f'{z[i]:.3g}' for i in tfit.beyond)} "
@@ -642,14 +645,12 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         held["n"] = (f"{why_curve}: held at the paper's {p.n:g}, the exponent of the curve held beside it"
                      if base is None else f"{why_curve}: kept {start}")
     else:
-        top, Fs = p.transition_curve.F[-1] if p.transition_curve.F else math.nan, max(
-            abs(p.stribeck.positive.Fs), abs(p.stribeck.negative.Fs))
         # a curve kept from another machine beside this fit's F_s (a valve's 539 N·m beside the
-        # paper's curve topping at 100 N·m was written unsaid, which `diagnose` then warned of)
-        under = (f"; it tops at F_d = {top:.4g}, under half of this fit's |F_s| = {Fs:.4g}: presliding past its last "
-                 f"knot follows its last segment (presliding recorded — slow force ramps, or small reversals of a "
-                 f"motion with measured friction — would set this machine's)"
-                 if p.transition_curve.kind == "piecewise_linear" and top < 0.5 * Fs else "")
+        # paper's curve topping at 100 N·m was written unsaid, which `diagnose` then warned of):
+        # said as ``curve_coverage`` says a fitted curve that stops short
+        short = curve_coverage(p, math.inf)
+        under = (f"; {short.removeprefix('transition curve: ')} (presliding recorded — slow force ramps, or small "
+                 f"reversals of a motion with measured friction — would set this machine's)" if short else "")
         held["transition_curve"] = f"{why_curve}: kept {start}{under}"
         held["n"] = f"{why_curve}: kept {start}"
     if all(d.fit is None for d in decisions.values()) and tfit is None:
@@ -709,7 +710,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 
     # the refinement starts from this fit's σ (a parameter it cannot move keeps them)
     res = FitResult(p.replace(uncertainty=unc), stribeck_fit, tfit, levels, n_br, notes, datasets,
-                    {pr.source: pr.th for pr in preps}, held, decisions)
+                    {pr.source: pr.th for pr in preps}, held, decisions, branches_tried=tried)
     if refine:
         try:
             from .refine import refine_fit
@@ -909,10 +910,9 @@ def fit_report(res: FitResult) -> str:
     lines.append(f"    units                    : position {u.get('position')}, force {u.get('force')}, time {u.get('time')}")
     if res.levels is not None:
         lines.append(f"    levels of S(v)           : {len(res.levels.velocity)}")
-    entered = sum(len(d.branches) for d in res.datasets)
     lines.append(f"    presliding branches used : {res.n_branches}"
-                 + (f" ({entered} entered the likelihood, which did not determine the curve from them: see the "
-                    f"notes)" if entered and not res.n_branches else ""))
+                 + (f" ({res.branches_tried} entered the likelihood, which did not determine the curve from them: see "
+                    f"the notes)" if res.branches_tried and not res.n_branches else ""))
     for side, dec in res.decisions.items():
         if dec.fit is not None:
             lines.append(f"    Markov chi2 ({side})  : {dec.fit.chi2:.3g} for {dec.fit.dof} degrees of freedom ({dec.model})")

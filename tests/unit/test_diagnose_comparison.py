@@ -1438,3 +1438,22 @@ def test_an_effect_parameter_held_at_an_end_of_its_range_is_said_with_that_range
     assert term.pinned(np.array([-0.3, 0.0])) is None
     # the settling scale at its bound is ``unsettled``'s to say, not this
     assert term.pinned(np.array([-0.3, math.log(5.0)])) is None
+
+
+def test_a_velocity_column_of_the_other_sign_does_not_turn_a_correct_force_round():
+    # a force of the right sign and a velocity column logged the other way: the position's own
+    # slope is used, the inertia reads positive, and nothing is refused
+    from leuven_friction.identify.data import Recording
+    from leuven_friction.identify.diagnose import recording_inertia
+
+    rng = np.random.default_rng(5)
+    t = np.arange(60000) * 1e-3
+    v = 0.05 * np.sign(np.sin(2 * np.pi * t / 20.0)) * (1 + 0.05 * np.sin(2 * np.pi * t * 0.3))
+    v = np.convolve(v, np.ones(50) / 50, mode="same")
+    x = np.cumsum(v) * 1e-3 + rng.normal(0, 1e-7, len(t))
+    a = np.gradient(v, t)
+    f = 5.0 * a + 20.0 * np.tanh(v / 1e-3) + rng.normal(0, 0.05, len(t))
+    rec = Recording(time=t, position=x, force=f, velocity=-v, columns={"force": "F [N]", "velocity": "v [m/s]"},
+                    units={"time": "s", "position": "m", "force": "N", "velocity": "m/s"}, source="turned_v.csv")
+    est, why = recording_inertia(rec)
+    assert est is not None and abs(est.value - 5.0) < 3 * est.stderr + 0.5, (est, why)

@@ -594,7 +594,14 @@ def test_an_angle_in_degrees_spelled_out_is_read_and_an_unknown_unit_is_named_at
     bad.write_text("time [s],stem_angle [furlong],stem_torque [N*m]\n" + rows)
     with pytest.raises(DataError) as e:
         load_recording(bad, require=("time", "position"))
-    assert "column 'stem_angle [furlong]': unknown unit 'furlong'" in str(e.value), str(e.value)
+    assert "column 'stem_angle [furlong]' reads as position by its name, but its unit 'furlong' is not known" in str(e.value), str(e.value)
+    # where two columns could each be the position, that is what is said (not the third's unit)
+    two = tmp_path / "two.csv"
+    two.write_text("time [s],pos_a [mm],pos_b [mm],q_flow [l/min],F [N]\n"
+                   + "".join(f"{i * 0.01},{i},{i},1,{(-1) ** i}\n" for i in range(20)))
+    with pytest.raises(DataError) as e:
+        load_recording(two, require=("time", "position"))
+    assert "could each be position" in str(e.value) and "is not known" not in str(e.value), str(e.value)
 
 
 def test_a_current_named_as_the_load_is_told_it_is_no_load(tmp_path):
