@@ -774,7 +774,6 @@ def _compared(rec: Recording, params: FrictionParams, space: str, m: MotionReadi
     if rec.force is None:
         raise DataError(f"{rec.source}: diagnosis needs a friction column, or an applied force column")
     f = np.asarray(rec.force, dtype=np.float64)
-    v_path = vel  # the position's own slope: the motion's direction (``inertia_read``)
     if m.tachometer:
         vel, v_noise = m.tachometer
         notes.append("velocity from the velocity column (quieter than the smoothed position)")
@@ -783,7 +782,7 @@ def _compared(rec: Recording, params: FrictionParams, space: str, m: MotionReadi
     L0 = averaging_length(0.0, f_sd, v_noise, dt, w, len(t), longest)
     # the model-free reading (at the shortest window): a force of the other sign is refused in
     # either space, as `fit` refuses it (``reversed_force``)
-    reading0 = inertia_read(f, vel, t, L0, v_rest, v_motion=v_path)
+    reading0 = inertia_read(f, vel, t, L0, v_rest, v_motion=m.velocity)
     reversed_why = reversed_force(rec, reading0)
     if reversed_why:
         raise DataError(reversed_why)
@@ -1089,12 +1088,12 @@ class Term:
         their range, besides the settling scale (``unsettled`` speaks of that), in words, or
         None: the bound holds them there, not the data, and they get no σ (``effect_sds``) — a
         pneumatic slide's load session had a softening named with h = −0.9 and nothing said."""
-        ends = []
+        if self.name == "position_ripple":  # (its cs, cc are coordinates of its a and phase)
+            return None
+        held = self.at_bounds(np.asarray(u)) - {self.settles, "b" if self.settles == "tau" else None}
+        ends = []  # (a drift's b at a bound, as its settling scale, is ``unsettled``'s to say)
         for (pname, tr, lo, hi), x in zip(self.free, u):
-            # (a ripple's cs, cc are coordinates of its a and phase, not parameters of its own; a
-            # drift's b at a bound is ``unsettled``'s to say)
-            if (pname == self.settles or pname not in self.at_bounds(np.asarray(u)) or self.name == "position_ripple"
-                    or (self.settles == "tau" and pname == "b")):
+            if pname not in held:
                 continue
             a, b = self.value(pname, tr, lo), self.value(pname, tr, hi)
             ends.append(f"{pname} at {a if x <= 0.5 * (lo + hi) else b:.3g} (its range {a:.3g} … {b:.3g})")
