@@ -24,7 +24,7 @@ ALIASES = {  # header names, lower case, units stripped; the German ones as lab 
 COF_NAMES = frozenset(("cof", "mu", "µ", "μ", "coefficient_of_friction", "friction_coefficient", "coeff_of_friction",
                        "reibwert", "reibungszahl", "reibungskoeffizient"))
 
-UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm, in, mil, ft; rad, mrad, urad, deg (degree), arcmin, arcsec, rev; N, mN, uN, kN, lbf (lb), ozf; "
+UNITS_ACCEPTED = ("s, ms, us, min; m, mm, um, nm, in, mil, ft; rad, mrad, urad, deg (degree), arcmin, arcsec, rev; N, mN, uN, kN, MN, lbf (lb), ozf; "
                   "their products for a torque (N·m, N*m, N.m, N-m, mN·m, N·mm, Nmm, mNm, lbf·in, in-lb, lbf·ft) and "
                   "quotients for a speed (mm/s, in/s, deg/s, rad/s, rev/min; rpm); °C, K; any of them with a size in front "
                   "(50 nm, 0.001 deg: one step of an encoder logged in counts)")

@@ -41,7 +41,7 @@ UNITS = {
     # a turn of a spindle or a disc; its speed in turns a minute (rev/min, 1/min: a quotient)
     "rev": (2 * np.pi, "rad"), "revs": (2 * np.pi, "rad"), "turn": (2 * np.pi, "rad"), "turns": (2 * np.pi, "rad"),
     "rpm": (2 * np.pi / 60, "rad/s"), "u/min": (2 * np.pi / 60, "rad/s"), "1/min": (2 * np.pi / 60, "rad/s"),
-    "n": (1.0, "N"), "mn": (1e-3, "N"), "un": (1e-6, "N"), "µn": (1e-6, "N"), "kn": (1e3, "N"),
+    "n": (1.0, "N"), "mn": (1e-3, "N"), "un": (1e-6, "N"), "µn": (1e-6, "N"), "kn": (1e3, "N"), "megan": (1e6, "N"),
     "nm_torque": (1.0, "N*m"), "n*m": (1.0, "N*m"), "n.m": (1.0, "N*m"), "n m": (1.0, "N*m"), "mnm": (1e-3, "N*m"),
     "m/s": (1.0, "m/s"), "mm/s": (1e-3, "m/s"), "um/s": (1e-6, "m/s"), "rad/s": (1.0, "rad/s"),
     "deg/s": (np.pi / 180, "rad/s"), "c": (1.0, "degC"), "degc": (1.0, "degC"), "°c": (1.0, "degC"), "k": (1.0, "K"),
@@ -84,7 +84,7 @@ _KIND = {"s": "time", "m": "length", "rad": "angle", "N": "force", "N*m": "torqu
 # a product's factors may be written with any of these between them (N·m, N*m, N.m, N m, N×m, N-m)
 _PRODUCT = re.compile(r"\s*[*·⋅.×-]\s*|\s+")
 # the single units a product or a quotient is made of, by kind (the lower-case keys of UNITS)
-_FORCE = ("n", "mn", "un", "µn", "kn", "lbf", "lb", "ozf")
+_FORCE = ("n", "mn", "un", "µn", "kn", "megan", "lbf", "lb", "ozf")
 _LENGTH = ("m", "mm", "um", "µm", "nm", "in", "ft")
 
 
@@ -121,7 +121,10 @@ def unit_of(unit: str, sig: str) -> tuple[float, str] | None:
     """(factor to SI, SI unit) of a header's unit for ``sig``; None when unknown. 'Nm' in a force
     or friction column is newton-metre, not nanometre; a torque may be written as a product in
     any of the usual ways (N·m, N*m, N.m, mN·m, N·mm, Nmm), a speed as a quotient (mm/s)."""
-    key = unit.strip().lower()
+    raw = unit.strip()
+    # read without case but for 'MN': M is mega where m is milli (a bearing's MN·m; 'MN' lowered
+    # had been read as mN, 10⁹ times small)
+    key = ("megan" + raw[2:] if raw.startswith("MN") else raw).lower()
     if key.replace(" ", "") == "nm" and sig in ("force", "friction", "normal_load"):
         return UNITS["nm_torque"]
     if key.replace(" ", "") in UNITS:

@@ -25,10 +25,11 @@ from ..model.params import get_value, spec_of
 
 from .data import Recording
 from .errors import IdentificationError
-from .markov import NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, stribeck_plus_viscous
+from .markov import MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, stribeck_plus_viscous
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, constant_velocity_levels, crossing_range,
-                      crossings, force_branches, motion_branches, noise_sd, prepare, sliding_levels)
+                      crossings, force_branches, motion_branches, noise_sd, prepare, short_fast_runs,
+                      sliding_levels)
 from .threads import one_blas_thread
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
@@ -431,6 +432,10 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             lv, widened = widened_levels(pr, lv)
             if widened:
                 notes.append(f"{pr.source}: {widened}")
+        if "window" not in (thresholds or {}) and "min_run" not in (thresholds or {}):
+            short = short_fast_runs(pr, lv)
+            if short:
+                notes.append(f"{pr.source}: {short}")
         hint = sign_hint(pr, lv)
         notes.append(f"{pr.source}: {len(lv.velocity)} constant-velocity level(s) "
                      f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)"
@@ -758,7 +763,6 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     return res
 
 
-MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not fit its levels
 CURVE_COVERS = 0.5  # a transition curve topping below this share of F_s⁺ − F_s⁻ is said to stop short
 
 

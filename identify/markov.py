@@ -314,7 +314,8 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
             # the levels show no dip the curve can follow, e.g. friction that drifted between them)
             why = (f"only {below} level(s) below the Stribeck velocity v_s = {abs(fit.values['vs']):.3g} the Stribeck "
                    f"fit put (levels from {np.min(a):.3g})" if below < 2
-                   else f"{', '.join(bad)} not determined by the levels (σ > half the value, a bound or a negative variance)")
+                   else f"with the Stribeck curve, {', '.join(bad)} not determined by the levels (σ > half the value, a bound "
+                        f"or a negative variance)")
     else:
         why = (f"only {speeds} distinct speed(s) in {k} level(s) on this side; the Stribeck curve needs at least "
                f"{STRIBECK_MIN_LEVELS} levels at {STRIBECK_MIN_SPEEDS} or more speeds")
@@ -358,26 +359,51 @@ def fit_sides_honest(levels: Levels) -> dict:
     own decision stands. (A tendon-driven joint made apart, swept both ways, showed a slow
     sine's tops as two more positive levels: the negative side, five levels with a clear dip,
     went to Coulomb + viscous with χ² 5,190 for 4 degrees of freedom and F_c 9.85 mN·m for
-    8.6, where δ from the positive side fits them with χ² 0.19.)"""
+    8.6, where δ from the positive side fits them with χ² 0.19.) So does a side of six levels or more
+    that went to Coulomb + viscous because its own Stribeck fit put fewer than two of them below
+    its v_s, where Coulomb + viscous misfits them (χ² beyond MISFIT_P) and δ from the other side
+    fits them better (a pitch bearing made apart, a Gaussian Stribeck curve swept both ways at the
+    same speeds: the negative side's slowest two levels at 0.40 and 0.80 v_s, its own fit's v_s
+    between them, Coulomb + viscous left χ² 5.98·10⁴ for 5 degrees of freedom)."""
     out = {side: fit_side_honest(levels, sign) for side, sign in (("positive", 1), ("negative", -1))}
     for side, sign in (("positive", 1), ("negative", -1)):
         other = out["negative" if sign > 0 else "positive"]
         m = levels.velocity * sign > 0
         a = np.abs(levels.velocity[m])
-        if (out[side].model.startswith("Stribeck") or other.model != "Stribeck + viscous"
-                or len(a) != STRIBECK_MIN_LEVELS - 1 or distinct_speeds(a) < STRIBECK_MIN_SPEEDS):
+        if out[side].model.startswith("Stribeck") or other.model != "Stribeck + viscous" \
+                or distinct_speeds(a) < STRIBECK_MIN_SPEEDS:
+            continue
+        short = len(a) == STRIBECK_MIN_LEVELS - 1
+        misfit = out[side].model == "Coulomb + viscous" and len(a) >= STRIBECK_MIN_LEVELS and _misfits(out[side].fit)
+        if not (short or misfit):
             continue
         d, sd = other.fit.values["delta"], other.fit.stderr["delta"]
         fit = with_delta_spread(fit_side(levels, sign, hold={"delta": d}), levels, sign,
                                 (max(d - sd, 1e-3), d + sd))
         if _trouble(fit, ("Fs", "Fc", "vs", "sigma2")) or int(np.sum(a < abs(fit.values["vs"]))) < 2:
             continue
+        if misfit and fit.chi2 >= out[side].fit.chi2:
+            continue
         word = "negative" if sign > 0 else "positive"
-        out[side] = SideDecision(fit, {"delta": (f"{len(a)} levels on this side do not determine it beside F_s, F_c, v_s "
-                                                 f"and σ2: held at the {word} side's {d:.3g} ± {sd:.2g}, identified there "
+        said = (f"{len(a)} levels on this side do not determine it beside F_s, F_c, v_s and σ2" if short else
+                f"this side's own Stribeck fit put fewer than two of its {len(a)} levels below its v_s, and Coulomb + "
+                f"viscous misfits them (χ² {out[side].fit.chi2:.3g} for {out[side].fit.dof} degrees of freedom, "
+                f"{fit.chi2:.3g} with this δ)")
+        out[side] = SideDecision(fit, {"delta": (f"{said}: held at the {word} side's {d:.3g} ± {sd:.2g}, identified there "
                                                  f"(the σ of the rest include that ±σ)")},
                                  f"Stribeck + viscous (δ from the {word} side)")
     return out
+
+
+MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not fit its levels
+
+
+def _misfits(fit: SideFit) -> bool:
+    """Whether a side's fit misfits its levels (χ² beyond the MISFIT_P tail for its degrees of
+    freedom): the levels show what the form does not follow."""
+    from scipy.stats import chi2 as chi2_dist
+
+    return fit.dof > 0 and chi2_dist.sf(fit.chi2, fit.dof) < MISFIT_P
 
 
 def _coulomb_viscous(levels: Levels, sign: int, viscous: bool) -> SideFit:

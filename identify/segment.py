@@ -359,7 +359,7 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
     th.f_noise = max(white_noise_sd(F), 1e-12 * float(np.max(np.abs(F)) or 1.0))
     th.v_floor = 5.0 * th.v_noise
     th.rel_tol = 0.06
-    th.min_run = int(max(20, 2 * w))
+    th.min_run = int(max(MIN_RUN_FLOOR, 2 * w))
     th.f_turn = 6.0 * th.f_noise
     th.x_turn = max(6.0 * th.x_noise, 2.0 * getattr(noise, "step", 0.0))
     usable = np.ones(n, dtype=bool)
@@ -423,6 +423,49 @@ def _batch_var_of_mean(a, batches=8):
     return max(float(np.var(bm, ddof=1) / batches), float(np.var(a, ddof=1) / len(a)))
 
 
+MIN_RUN_FLOOR = 20  # the shortest run of steady velocity a level is ever taken from (samples)
+
+
+def steady_runs(prep: Prepared):
+    """Each run of steady velocity as (chunk start, run start, run end) in the chunk's samples:
+    |v| > v_floor and v within rel_tol·|v| + 3·v_noise of itself over a window, one sign."""
+    th, v = prep.th, prep.velocity
+    w = max(th.window, 5)
+    for a, b in prep.chunks:
+        vv = v[a:b]
+        steady = (np.abs(vv) > th.v_floor) & prep.usable[a:b]
+        same = np.zeros(len(vv), dtype=bool)
+        same[w:] = np.abs(vv[w:] - vv[:-w]) <= th.rel_tol * np.abs(vv[w:]) + 3 * th.v_noise
+        same[:-w] &= same[w:]
+        steady &= same & (np.sign(vv) == np.sign(np.roll(vv, w)))
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], steady.astype(np.int8), [0]])))
+        for s0, e0 in zip(edges[::2], edges[1::2]):
+            yield a, int(s0), int(e0)
+
+
+def short_fast_runs(prep: Prepared, levels: Levels) -> str:
+    """The steady runs faster than every level of their side, but shorter than ``min_run``
+    (two windows), in words ("" if none): a sweep's fastest speeds held for less time than the
+    window the velocity is smoothed over asks (a pitch bearing made apart held 2 °/s for 7 s at
+    50 Hz; the window derived from its 141,000 rows was 141 samples, and its fastest level was
+    lost until ``--threshold window=41``)."""
+    th, v = prep.th, prep.velocity
+    found = []
+    for a, s0, e0 in steady_runs(prep):
+        if not MIN_RUN_FLOOR <= e0 - s0 < th.min_run:
+            continue
+        speed = float(np.median(v[a + s0:a + e0]))
+        side = np.abs(levels.velocity[levels.velocity * speed > 0])
+        if speed != 0 and abs(speed) > 1.5 * (float(np.max(side)) if len(side) else 0.0):
+            found.append((abs(speed), e0 - s0))
+    if not found:
+        return ""
+    top = max(found)
+    return (f"{len(found)} steady run(s) faster than every level of their side (up to |v| {top[0]:.3g}) lasted under "
+            f"min_run = {th.min_run} samples (two windows of {th.window}; the longest {max(n for _, n in found)}) and are "
+            f"not levels: a shorter window (--threshold window=…) takes them, at more velocity noise")
+
+
 def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) -> Levels:
     """Runs where |v| > v_floor and v stays within rel_tol·|v| + 3·v_noise of itself over a
     window; the first ``settle_fraction`` of each run is dropped (the approach to sliding),
@@ -437,55 +480,47 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     out = ([], [], [], [], [])
     trend = ([], [], [], [], [])
     opposing = 0
-    for a, b in prep.chunks:
-        vv = v[a:b]
-        steady = (np.abs(vv) > th.v_floor) & prep.usable[a:b]
-        same = np.zeros(len(vv), dtype=bool)
-        same[w:] = np.abs(vv[w:] - vv[:-w]) <= th.rel_tol * np.abs(vv[w:]) + 3 * th.v_noise
-        same[:-w] &= same[w:]
-        steady &= same & (np.sign(vv) == np.sign(np.roll(vv, w)))
-        edges = np.flatnonzero(np.diff(np.concatenate([[0], steady.astype(np.int8), [0]])))
-        for s0, e0 in zip(edges[::2], edges[1::2]):
-            if e0 - s0 < th.min_run:
-                continue
-            s = a + s0 + int(settle_fraction * (e0 - s0))
-            e = a + e0 - w // 2
-            if e - s < th.min_run:
-                continue
-            vk = v[s:e]
-            med = np.median(vk)
-            if np.max(np.abs(vk - med)) > 2 * th.rel_tol * abs(med) + 6 * th.v_noise:
-                continue
-            vel = (x[e - 1] - x[s]) / (t[e - 1] - t[s])
-            if vel * med <= 0 or abs(x[a + e0 - 1] - x[a + s0]) < th.min_travel:
-                continue
-            f = F[s:e]
-            if np.mean(f) * vel <= 0:
-                # sliding dissipates: S(v) has the sign of v. A slow creep whose force opposes it
-                # is the presliding spring giving back (a robot joint's torque ramps), not a level
-                opposing += 1
-                continue
-            h = len(f) // 2
-            se = np.sqrt(_batch_var_of_mean(f[:h], 4) + _batch_var_of_mean(f[h:], 4))
-            step = np.mean(f[h:]) - np.mean(f[:h])
-            # a run whose friction still trends (its halves over 4σ apart) has not settled to one
-            # value of S(v): a ripple along its travel, a drift in time, a load moving. It is kept
-            # as a point of S(v) with half that step in its σ, where its mean may lie off the
-            # curve, so that a sweep's slow end lost that way does not take the Stribeck part with
-            # it (a feed axis made apart, a 5 mm ripple along its screw: 11 of 24 runs, all the
-            # slow ones, and F_s held at F_c); it ends no presliding branch (``Levels.steady``).
-            # Only where the speed held: its relative change TREND_NOT_SPEED times under the
-            # friction's (S(v)'s slope in log-log seldom reaches 1), else the speed made the trend
-            trended = abs(step) > 4 * se
-            speed_step = abs(np.mean(vk[h:]) - np.mean(vk[:h])) / abs(vel)
-            if trended and abs(step) <= TREND_NOT_SPEED * speed_step * abs(np.mean(f)):
-                continue  # the speed moved with it: no steady run (a creep, a stroke of a sinusoidal force)
-            dest = trend if trended else out
-            dest[0].append(float(vel))
-            dest[1].append(float(np.mean(f)))
-            dest[2].append(_batch_var_of_mean(f) + (0.25 * step * step if trended else 0.0))
-            dest[3].append(e - s)
-            dest[4].append(float(np.mean(t[s:e])))
+    for a, s0, e0 in steady_runs(prep):
+        if e0 - s0 < th.min_run:
+            continue
+        s = a + s0 + int(settle_fraction * (e0 - s0))
+        e = a + e0 - w // 2
+        if e - s < th.min_run:
+            continue
+        vk = v[s:e]
+        med = np.median(vk)
+        if np.max(np.abs(vk - med)) > 2 * th.rel_tol * abs(med) + 6 * th.v_noise:
+            continue
+        vel = (x[e - 1] - x[s]) / (t[e - 1] - t[s])
+        if vel * med <= 0 or abs(x[a + e0 - 1] - x[a + s0]) < th.min_travel:
+            continue
+        f = F[s:e]
+        if np.mean(f) * vel <= 0:
+            # sliding dissipates: S(v) has the sign of v. A slow creep whose force opposes it
+            # is the presliding spring giving back (a robot joint's torque ramps), not a level
+            opposing += 1
+            continue
+        h = len(f) // 2
+        se = np.sqrt(_batch_var_of_mean(f[:h], 4) + _batch_var_of_mean(f[h:], 4))
+        step = np.mean(f[h:]) - np.mean(f[:h])
+        # a run whose friction still trends (its halves over 4σ apart) has not settled to one
+        # value of S(v): a ripple along its travel, a drift in time, a load moving. It is kept
+        # as a point of S(v) with half that step in its σ, where its mean may lie off the
+        # curve, so that a sweep's slow end lost that way does not take the Stribeck part with
+        # it (a feed axis made apart, a 5 mm ripple along its screw: 11 of 24 runs, all the
+        # slow ones, and F_s held at F_c); it ends no presliding branch (``Levels.steady``).
+        # Only where the speed held: its relative change TREND_NOT_SPEED times under the
+        # friction's (S(v)'s slope in log-log seldom reaches 1), else the speed made the trend
+        trended = abs(step) > 4 * se
+        speed_step = abs(np.mean(vk[h:]) - np.mean(vk[:h])) / abs(vel)
+        if trended and abs(step) <= TREND_NOT_SPEED * speed_step * abs(np.mean(f)):
+            continue  # the speed moved with it: no steady run (a creep, a stroke of a sinusoidal force)
+        dest = trend if trended else out
+        dest[0].append(float(vel))
+        dest[1].append(float(np.mean(f)))
+        dest[2].append(_batch_var_of_mean(f) + (0.25 * step * step if trended else 0.0))
+        dest[3].append(e - s)
+        dest[4].append(float(np.mean(t[s:e])))
 
     def levels(o, **kw):
         return Levels(*(np.array(a, dtype=float) for a in o[:4]), time=np.array(o[4], dtype=float), **kw)

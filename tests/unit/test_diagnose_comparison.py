@@ -185,6 +185,12 @@ def test_a_saturation_scale_at_either_bound_is_not_seen_settling():
     assert "at its lower bound 3" in term.unsettled(np.array([-0.3, math.log(3.0)]))
     assert term.unsettled(np.array([-0.3, math.log(5.0)])) is None
     assert term.unsettled(np.array([-0.3, math.log(3.2)])) is None  # 7 % above the bound
+    # the spring losing 90 % once settled (h at its lower bound), or stiffening six times (at its
+    # upper): the range holds the change, not the data, wherever n_c ends
+    assert "h is at a bound" in term.unsettled(np.array([-0.9, math.log(5.0)]))
+    assert "h is at a bound" in term.unsettled(np.array([5.0, math.log(5.0)]))
+    assert term.unsettled(np.array([-0.85, math.log(5.0)])) is None  # h inside its range
+    assert term.pinned(np.array([-0.9, math.log(5.0)])) is None  # said by ``unsettled``, not twice
     assert Term("time_drift", {}, (("b", "lin", -0.9, 5.0),)).unsettled(np.array([5.0])) is None  # no scale to settle
     # where the strokes' speeds do not follow the reversals over the session, a trend at the
     # upper bound is at most in part a stiffness following the speed (within passes of rising
@@ -1431,13 +1437,17 @@ def test_an_effect_parameter_held_at_an_end_of_its_range_is_said_with_that_range
 
     from leuven_friction.identify.diagnose import Term
 
+    load = Term("normal_load", {"N0": 100.0}, (("alpha", "lin", 0.0, 3.0),))
+    said = load.pinned(np.array([3.0]))
+    assert said is not None and "alpha at 3 (its range 0 … 3)" in said and "no σ" in said, said
+    assert load.pinned(np.array([0.7])) is None
+    # the settling scale at its bound, and the size of the change it settles to, are
+    # ``unsettled``'s to say, not this
     term = Term("cyclic_softening", {}, (("h", "lin", -0.9, 5.0), ("n_c", "log", math.log(0.05), math.log(5.0))),
                 settles="n_c", refs={"n_c": 10.0})
-    said = term.pinned(np.array([-0.9, 0.0]))
-    assert said is not None and "h at -0.9 (its range -0.9 … 5)" in said and "no σ" in said, said
     assert term.pinned(np.array([-0.3, 0.0])) is None
-    # the settling scale at its bound is ``unsettled``'s to say, not this
     assert term.pinned(np.array([-0.3, math.log(5.0)])) is None
+    assert term.pinned(np.array([-0.9, 0.0])) is None and "h is at a bound" in term.unsettled(np.array([-0.9, 0.0]))
 
 
 def test_a_velocity_column_of_the_other_sign_does_not_turn_a_correct_force_round():

@@ -774,3 +774,29 @@ def test_a_value_is_written_to_the_digits_its_sigma_reaches():
     assert to_its_sd(17.88, 0.0087) == "17.8800"
     assert to_its_sd(12345.6, 30.0) == "12346"  # never fewer than four significant digits
     assert to_its_sd(36.0, 1.0) == "36.00"
+
+
+def test_a_sweeps_fastest_speed_held_shorter_than_two_windows_is_said_with_the_window_that_takes_it():
+    # four slow levels of 40 s and a fast stroke of 0.6 s each way, at 1 kHz (the window derived
+    # from 206,000 rows is 205 samples or more: min_run ≥ 410); friction Coulomb + viscous
+    from leuven_friction.identify.data import Recording
+    from leuven_friction.identify.segment import constant_velocity_levels, prepare, short_fast_runs
+
+    rng = np.random.default_rng(2)
+    plan = [(0.01, 40), (-0.01, 40), (0.02, 40), (-0.02, 40), (0.1, 0.6), (0, 2), (-0.1, 0.6), (0, 2.8)]
+    v = np.concatenate([np.full(int(round(d * 1000)), s) for s, d in plan])
+    v = np.convolve(v, np.ones(25) / 25, mode="same")  # the drive's own ramps
+    t = np.arange(len(v)) * 1e-3
+    x = np.cumsum(v) * 1e-3 + rng.normal(0, 2e-8, len(v))
+    f = np.tanh(v / 1e-4) * (1.0 + 0.5 * np.abs(v)) + rng.normal(0, 0.01, len(v))
+    rec = Recording(time=t, position=x, friction=f, source="sweep.csv")
+    prep = prepare(rec)
+    lv = constant_velocity_levels(prep)
+    assert np.max(np.abs(lv.velocity)) < 0.03  # the fast strokes are no levels at this window
+    said = short_fast_runs(prep, lv)
+    assert said.startswith("2 steady run(s)") and "up to |v| 0.1" in said and "--threshold window" in said, said
+    # with the window it names, they are levels, and nothing is said
+    short = prepare(rec, overrides={"window": 41})
+    lv2 = constant_velocity_levels(short)
+    assert np.sum(np.abs(np.abs(lv2.velocity) - 0.1) < 0.01) == 2
+    assert short_fast_runs(short, lv2) == ""

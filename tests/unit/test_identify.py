@@ -337,6 +337,36 @@ def test_a_side_one_level_short_takes_delta_from_the_other_and_follows_its_dip()
     assert np.max(np.abs(got / true - 1.0)) < 0.02
 
 
+def test_a_side_whose_own_fit_puts_one_level_below_vs_takes_delta_from_the_other_where_coulomb_misfits():
+    # the 14 levels `fit` found on a pitch bearing simulated apart (elasto-plastic contact, a
+    # Gaussian Stribeck curve: F_s 45 kN·m, F_c 30 kN·m, v_s 0.05 °/s = 8.73e-4 rad/s, the same
+    # both ways; 7 speeds each way, shuffled): the negative side's own fit put its v_s between its
+    # slowest two levels, so it went to Coulomb + viscous, χ² 6·10⁴ for 5 degrees of freedom.
+    # With δ from the positive side it follows the dip, and both sides read the simulator's values
+    from leuven_friction.identify.markov import fit_side_honest, fit_sides_honest
+
+    v = np.array([-3.490659e-4, 1.745329e-2, -2.617994e-3, 1.047198e-2, 1.396317e-3, -1.396281e-3, 5.235988e-3,
+                  3.490303e-4, -5.235988e-3, 6.981675e-4, -1.745329e-2, -1.047198e-2, 2.617994e-3, -6.981317e-4])
+    F = np.array([-43319.98, 38116.48, -31876.59, 34482.46, 31286.12, -32593.53, 32188.32,
+                  43294.74, -32866.83, 38099.13, -38515.36, -35139.46, 31535.61, -37609.01])
+    var = np.array([4748.0, 400.77, 424.23, 1168.71, 1392.88, 2950.50, 1173.72,
+                    2580.78, 160.62, 2263.37, 503.80, 535.14, 6124.75, 1131.13])
+    count = np.array([4866, 443, 4904, 1070, 4908, 4910, 2558, 4914, 2558, 4877, 442, 1069, 4904, 4876.0])
+    levels = Levels(v, F, var, count)
+    alone = fit_side_honest(levels, -1)
+    assert alone.model == "Coulomb + viscous" and alone.fit.chi2 > 1000 * alone.fit.dof
+    dec = fit_sides_honest(levels)
+    neg, pos = dec["negative"], dec["positive"]
+    assert pos.model == "Stribeck + viscous"
+    assert neg.model == "Stribeck + viscous (δ from the positive side)" and set(neg.held) == {"delta"}
+    assert "Coulomb + viscous misfits them" in neg.held["delta"]
+    assert neg.fit.chi2 < alone.fit.chi2 / 100
+    for side, sign in ((pos, 1), (neg, -1)):
+        assert side.fit.values["Fs"] == pytest.approx(45000 * sign, rel=0.03)
+        assert side.fit.values["Fc"] == pytest.approx(30000 * sign, rel=0.03)
+        assert side.fit.values["vs"] == pytest.approx(8.727e-4 * sign, rel=0.15)
+
+
 def test_a_side_one_level_short_without_a_dip_keeps_its_own_decision():
     # the same count of negative levels on a flat Coulomb + viscous line: δ from the other side
     # cannot place a dip that is not there (v_s undetermined), so the side stays Coulomb + viscous
@@ -369,3 +399,4 @@ def test_a_transition_curve_stopping_short_of_the_outer_loop_is_said():
                           1e-3) == ""
     assert "passes 0.001" in said
     assert "passes" not in curve_coverage(cut, float("inf"))
+

@@ -103,6 +103,18 @@ def test_a_torque_unit_spelt_another_way_is_the_same_unit():
     assert FrictionParams.from_dict(d).units.force == "N*m"
 
 
+def test_mega_and_milli_newton_are_told_apart_by_case_alone():
+    # units are read without case, but M is mega and m milli: a bearing's torque in MN·m had
+    # been read in mN·m, 10⁹ times small
+    from leuven_friction.identify.data import unit_of
+
+    for spelt in ("MN", "MN*m", "MNm", "MN·m", "MN m"):
+        factor, si = unit_of(spelt, "force")
+        assert factor == 1e6 and si == ("N" if spelt == "MN" else "N*m"), spelt
+    assert unit_of("mN", "force") == (1e-3, "N") and unit_of("mNm", "force") == (1e-3, "N*m")
+    assert unit_of("kN*m", "force") == (1e3, "N*m")
+
+
 def _turning_axis(n=6000, dt=1e-3):
     """A rotary axis running three and a half turns forward at 2π rad/s with a 0.3 rad wobble,
     then back: its continuous angle (rad), and the torque it logs."""
