@@ -25,7 +25,8 @@ from ..model.params import get_value, spec_of
 
 from .data import Recording
 from .errors import IdentificationError
-from .markov import MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, stribeck_plus_viscous
+from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfits,
+                     stribeck_plus_viscous)
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, constant_velocity_levels, crossing_range,
                       crossings, force_branches, motion_branches, noise_sd, prepare, short_fast_runs,
@@ -616,7 +617,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     why_curve = ("the branches do not bound F_d" if unbounded else
                  "presliding shorter than the position sensor resolves" if unresolved else "no presliding data")
     if tfit is not None:
-        if tfit.dof > 0 and chi2_dist.sf(tfit.chi2, tfit.dof) < MISFIT_P:
+        if misfits(tfit):
             # as for S(v): the σ of a curve whose shape misfits its branches are the noise's spread only
             notes.append(f"transition curve: its shape misfits the branches with Gaussian readings (χ² = {tfit.chi2:.3g} "
                          f"for {tfit.dof} degrees of freedom, p < {MISFIT_P:g}, χ²/dof = {tfit.chi2 / tfit.dof:.3g}): "
@@ -701,7 +702,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                     unc[path] = dec.fit.stderr[k]
             notes.extend(f"{side}: {m}" for m in dec.fit.notes)
             notes.append(f"{side} side: {dec.model}")
-            if dec.fit.dof > 0 and chi2_dist.sf(dec.fit.chi2, dec.fit.dof) < MISFIT_P:
+            if misfits(dec.fit):
                 # the σ above are those of a form that fits its levels to their noise; say when
                 # it does not (slow holds that stick and slip, a drift or a load along the sweep)
                 notes.append(f"{side} side: this form misfits the levels (χ² = {dec.fit.chi2:.3g} for {dec.fit.dof} "

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import least_squares
+from scipy.stats import chi2 as chi2_dist
 
 from .errors import IdentificationError
 
@@ -374,7 +375,7 @@ def fit_sides_honest(levels: Levels) -> dict:
                 or distinct_speeds(a) < STRIBECK_MIN_SPEEDS:
             continue
         short = len(a) == STRIBECK_MIN_LEVELS - 1
-        misfit = out[side].model == "Coulomb + viscous" and len(a) >= STRIBECK_MIN_LEVELS and _misfits(out[side].fit)
+        misfit = out[side].model == "Coulomb + viscous" and len(a) >= STRIBECK_MIN_LEVELS and misfits(out[side].fit)
         if not (short or misfit):
             continue
         d, sd = other.fit.values["delta"], other.fit.stderr["delta"]
@@ -398,11 +399,10 @@ def fit_sides_honest(levels: Levels) -> dict:
 MISFIT_P = 1e-3  # S(v)'s χ² beyond this tail probability: the form does not fit its levels
 
 
-def _misfits(fit: SideFit) -> bool:
-    """Whether a side's fit misfits its levels (χ² beyond the MISFIT_P tail for its degrees of
-    freedom): the levels show what the form does not follow."""
-    from scipy.stats import chi2 as chi2_dist
-
+def misfits(fit) -> bool:
+    """Whether a fit (of S(v)'s side to its levels, or of the transition curve to its branches:
+    anything with ``chi2`` and ``dof``) misfits its data: χ² beyond the MISFIT_P tail for its
+    degrees of freedom, the data showing what the form does not follow."""
     return fit.dof > 0 and chi2_dist.sf(fit.chi2, fit.dof) < MISFIT_P
 
 
