@@ -163,6 +163,9 @@ def _sigmas(d: float, s: float) -> str:
 
 SHAPE_SIGMAS = 2.0  # an amplitude within this many σ of no effect leaves its shape parameters undetermined
 POLAR_SHOWN = 2.45  # … a magnitude within this many σ of its parts (√ of χ²₂'s 95 % point, 5.99)
+# a relative amplitude (a drift's b, a softening's h) whose σ exceeds this — the whole of the
+# friction or stiffness it scales — is not an estimate at all: its interval bounds nothing
+RELATIVE_SD_UNBOUNDED = 1.0
 PHASES_KEPT = 3  # wavelengths whose sines a context keeps
 FACTORS_KEPT = 6  # effects' factors a context keeps
 CACHE_FLOATS = 8_000_000  # … and at most this many floats per cache (64 MB), however long the motion
@@ -224,13 +227,22 @@ class Effect:
         """{shape parameter: why} for each one whose amplitudes (``EffectParam.shape_of``) are
         not told from no effect (``amplitude_not_shown``): the data then show no such
         term, so neither where it lies nor how fast it comes — a second harmonic's phase at 0.8
-        σ of its amplitude once read "1.14 ± 2.4 rad", a number that says nothing. An amplitude
-        without a σ (held) is not judged."""
+        σ of its amplitude once read "1.14 ± 2.4 rad", a number that says nothing; and each
+        relative amplitude whose σ exceeds RELATIVE_SD_UNBOUNDED. An amplitude without a σ
+        (held) is not judged."""
         sd = sd or {}
         amplitudes = {a for p in self.params for a in p.shape_of}
         weak = {a: why for a in amplitudes if (why := self.amplitude_not_shown(a, values, sd))}
         out = {p.name: "; ".join(weak[a] for a in p.shape_of) for p in self.params
                if p.shape_of and all(a in weak for a in p.shape_of)}
+        # a relative amplitude whose σ is over 100 %: b = 0.01 ± 0.02 says the change is small,
+        # b = 0.30 ± 2.9 says nothing (a stage's drift named beside its ripple was written so)
+        for a in sorted(amplitudes):
+            p = next(q for q in self.params if q.name == a)
+            s = sd.get(a)
+            if p.unit == "1" and s is not None and math.isfinite(s) and s > RELATIVE_SD_UNBOUNDED and a in values:
+                out[a] = (f"{a} = {values[a]:.3g} ± {s:.2g}: its σ exceeds the whole "
+                          f"({RELATIVE_SD_UNBOUNDED:.0%}) of what it scales")
         # a scale (a drift's τ, a softening's n_c, a ripple's λ: positive, ``lo_open`` at 0) whose σ
         # exceeds it: the change is shown, not how fast it comes or how long it is (a warm-up
         # written "τ = 25.9 ± 71 s" where the decision had read 92.7)

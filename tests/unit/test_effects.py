@@ -294,6 +294,13 @@ def test_a_shape_whose_amplitude_is_within_two_sigma_of_none_is_said_not_determi
     warm = {"b": -0.218, "tau": 25.9, "t0": 4.7}
     assert set(EFFECTS["time_drift"].undetermined(warm, {"b": 0.045, "tau": 71.0})) == {"tau"}
     assert EFFECTS["time_drift"].undetermined(warm, {"b": 0.045, "tau": 20.0}) == {}
+    # a drift's b = 0.30 ± 2.9 bounds nothing — friction falling to 5 % or rising sevenfold
+    # within 2 σ — so it is not determined either, nor its τ; b = 0.30 ± 0.9 is an estimate (a
+    # weak one, not told from none, so its τ is not determined)
+    assert set(EFFECTS["time_drift"].undetermined({**drift, "b": 0.2993}, {"b": 2.9, "tau": 5.0})) == {"b", "tau"}
+    assert set(EFFECTS["time_drift"].undetermined({**drift, "b": 0.2993}, {"b": 0.9, "tau": 5.0})) == {"tau"}
+    assert set(EFFECTS["cyclic_softening"].undetermined({"h": -0.3, "n_c": 9.0, "min_excursion": 1e-6},
+                                                        {"h": 1.4, "n_c": 2.0})) == {"h", "n_c"}
     # a softening's sign does not matter: h = −0.3 ± 0.05 is 6 σ from none
     assert EFFECTS["cyclic_softening"].undetermined({"h": -0.3, "n_c": 9.0, "min_excursion": 1e-6},
                                                      {"h": 0.05, "n_c": 2.0}) == {}

@@ -490,6 +490,30 @@ def test_creep_between_presliding_ramps_is_not_a_level():
     np.testing.assert_array_equal(kept.velocity, sweep)
 
 
+def test_creep_outnumbering_the_sweep_is_still_creep():
+    # a nanopositioning stage whose force is ramped slowly in presliding: more runs creep than
+    # a sweep has levels. The sweep (a fixed stroke per speed, so equal travel) holds the
+    # sliding; the creep runs, far slower, hold 20–60 % of it and go nowhere. Which runs slide
+    # is the sweep's to say, however many creeping runs there are
+    from leuven_friction.identify.markov import Levels
+    from leuven_friction.identify.segment import sliding_only
+
+    rng = np.random.default_rng(3)
+    creep_v = rng.uniform(2.4e-7, 1e-6, 12)
+    creep_F = rng.uniform(0.03, 0.09, 12)
+    creep_n = rng.uniform(1500, 3000, 12)
+    sweep_v = np.geomspace(2e-5, 2e-3, 9)
+    sweep_F = 0.12 + 0.04 * np.exp(-((sweep_v / 2e-4) ** 2))  # a Stribeck curve from F_s 0.16 to F_c 0.12
+    sweep_n = 1e-3 * 2000.0 / sweep_v  # a 1 mm stroke at 2 kHz
+    v = np.concatenate([creep_v, sweep_v, -sweep_v])
+    F = np.concatenate([creep_F, sweep_F, -sweep_F])
+    n = np.concatenate([creep_n, sweep_n, sweep_n])
+    for scale in (1.0, 1e6):  # m/s, or µm/s
+        kept = sliding_only(Levels(v * scale, F, np.full(len(v), 1e-6), n))
+        np.testing.assert_allclose(np.sort(kept.velocity), np.sort(np.concatenate([sweep_v, -sweep_v])) * scale)
+        assert kept.creep == 12
+
+
 @pytest.mark.parametrize("kind, seed", [("robot_joint", 1042), ("linear_stage", 1058)])
 def test_refinement_leaves_the_first_curve_to_the_machines_history(kind, seed):
     # the generator's contact starts virgin (Maxwell-slip elements unloaded): its first curve
