@@ -28,9 +28,9 @@ from .errors import IdentificationError
 from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfits,
                      stribeck_plus_viscous)
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, constant_velocity_levels, crossing_range,
-                      crossings, force_branches, motion_branches, noise_sd, prepare, short_fast_runs,
-                      sliding_levels)
+from .segment import (FASTER_THAN_LEVELS, GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared,
+                      constant_velocity_levels, crossing_range, crossings, fast_runs_cut_short, force_branches,
+                      motion_branches, noise_sd, prepare, short_fast_runs, sliding_levels)
 from .threads import one_blas_thread
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
@@ -204,6 +204,42 @@ def widened_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
                   f"negative), at {best_tol:g} {len(best.velocity)} at {best_speeds[0]} + {best_speeds[1]} "
                   f"— the velocity wanders within its runs (a controller holding a speed against a friction "
                   f"that changes); set --threshold rel_tol to choose")
+
+
+def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "auto",
+                        thresholds: dict | None = None) -> tuple[Levels, str]:
+    """A recording's levels with its fastest speeds added where a sweep held them for less
+    than ``min_run`` (two windows: ``segment.fast_runs_cut_short``), and what was done, in
+    words ("" if nothing). The window is derived from the recording's length (n/1000 samples at
+    least), so a long session's short top speeds fall under it: a nanopositioning stage made
+    apart, 174,000 rows at 2 kHz, held its fastest speeds for 64 samples against a window of
+    173, and its S(v) was held at Coulomb + viscous (F_c 0.151 N for 0.12). Those runs are
+    taken again at the widest of the windows NARROWER, NARROWER², … of the derived one (odd, at
+    least 5 samples) that makes levels of them: only the levels faster than every level found,
+    so the others, and the presliding, keep the derived window's lower velocity noise."""
+    found = fast_runs_cut_short(prep, levels)
+    if not found:
+        return levels, ""
+    said = short_fast_runs(prep, levels)
+    top = {sign: float(np.max(np.abs(levels.velocity[levels.velocity * sign > 0]), initial=0.0)) for sign in (1.0, -1.0)}
+    w = prep.th.window
+    while (w := (int(w * NARROWER) - 1) | 1) >= 5:
+        narrow = prepare(prep.rec, friction_sign=friction_sign, overrides={**(thresholds or {}), "window": w})
+        narrow.th.rel_tol = prep.th.rel_tol  # (as ``widened_levels`` left it)
+        more = constant_velocity_levels(narrow)
+        beyond = np.array([abs(v) > FASTER_THAN_LEVELS * top[1.0 if v > 0 else -1.0] for v in more.velocity], dtype=bool)
+        if beyond.any():
+            added = more.kept(beyond, opposing=0, creep=0, trend_alone=0)
+            return (Levels.joined([levels, added]),
+                    f"{len(found)} steady run(s) faster than every level of their side lasted under min_run = "
+                    f"{prep.th.min_run} samples (two windows of {prep.th.window}; the longest "
+                    f"{max(n for _, n in found)}): {int(beyond.sum())} level(s) taken from them at a window of {w} "
+                    f"(|v| {', '.join(f'{v:.3g}' for v in np.sort(np.abs(added.velocity)))}), the others at "
+                    f"{prep.th.window}; set --threshold window to choose one for all")
+    return levels, said + " (no window down to 5 samples made levels of them)"
+
+
+NARROWER = 2.0 / 3.0  # each window tried for a sweep's fastest runs is this fraction of the one before
 
 
 def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
@@ -434,9 +470,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             if widened:
                 notes.append(f"{pr.source}: {widened}")
         if "window" not in (thresholds or {}) and "min_run" not in (thresholds or {}):
-            short = short_fast_runs(pr, lv)
-            if short:
-                notes.append(f"{pr.source}: {short}")
+            lv, fastest = with_fastest_levels(pr, lv, friction_sign, thresholds)
+            if fastest:
+                notes.append(f"{pr.source}: {fastest}")
         hint = sign_hint(pr, lv)
         notes.append(f"{pr.source}: {len(lv.velocity)} constant-velocity level(s) "
                      f"({int(np.sum(lv.velocity > 0))} positive, {int(np.sum(lv.velocity < 0))} negative)"

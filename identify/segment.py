@@ -443,12 +443,12 @@ def steady_runs(prep: Prepared):
             yield a, int(s0), int(e0)
 
 
-def short_fast_runs(prep: Prepared, levels: Levels) -> str:
-    """The steady runs faster than every level of their side, but shorter than ``min_run``
-    (two windows), in words ("" if none): a sweep's fastest speeds held for less time than the
-    window the velocity is smoothed over asks (a pitch bearing made apart held 2 °/s for 7 s at
-    50 Hz; the window derived from its 141,000 rows was 141 samples, and its fastest level was
-    lost until ``--threshold window=41``)."""
+def fast_runs_cut_short(prep: Prepared, levels: Levels) -> list[tuple[float, int]]:
+    """(|v|, samples) of each steady run faster than every level of its side (by half as much
+    again) but shorter than ``min_run`` (two windows): a sweep's fastest speeds held for less
+    time than the window the velocity is smoothed over asks (a pitch bearing made apart held
+    2 °/s for 7 s at 50 Hz; the window derived from its 141,000 rows was 141 samples, and its
+    fastest level was lost until ``--threshold window=41``)."""
     th, v = prep.th, prep.velocity
     found = []
     for a, s0, e0 in steady_runs(prep):
@@ -456,14 +456,23 @@ def short_fast_runs(prep: Prepared, levels: Levels) -> str:
             continue
         speed = float(np.median(v[a + s0:a + e0]))
         side = np.abs(levels.velocity[levels.velocity * speed > 0])
-        if speed != 0 and abs(speed) > 1.5 * (float(np.max(side)) if len(side) else 0.0):
+        if speed != 0 and abs(speed) > FASTER_THAN_LEVELS * (float(np.max(side)) if len(side) else 0.0):
             found.append((abs(speed), e0 - s0))
+    return found
+
+
+FASTER_THAN_LEVELS = 1.5  # a run this many times faster than every level of its side is beyond them
+
+
+def short_fast_runs(prep: Prepared, levels: Levels) -> str:
+    """``fast_runs_cut_short`` in words ("" if none)."""
+    found = fast_runs_cut_short(prep, levels)
     if not found:
         return ""
-    top = max(found)
-    return (f"{len(found)} steady run(s) faster than every level of their side (up to |v| {top[0]:.3g}) lasted under "
-            f"min_run = {th.min_run} samples (two windows of {th.window}; the longest {max(n for _, n in found)}) and are "
-            f"not levels: a shorter window (--threshold window=…) takes them, at more velocity noise")
+    th = prep.th
+    return (f"{len(found)} steady run(s) faster than every level of their side (up to |v| {max(found)[0]:.3g}) lasted "
+            f"under min_run = {th.min_run} samples (two windows of {th.window}; the longest {max(n for _, n in found)}) "
+            f"and are not levels: a shorter window (--threshold window=…) takes them, at more velocity noise")
 
 
 def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) -> Levels:

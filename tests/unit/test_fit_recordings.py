@@ -824,3 +824,46 @@ def test_a_sweeps_fastest_speed_held_shorter_than_two_windows_is_said_with_the_w
     lv2 = constant_velocity_levels(short)
     assert np.sum(np.abs(np.abs(lv2.velocity) - 0.1) < 0.01) == 2
     assert short_fast_runs(short, lv2) == ""
+
+
+def _sweep_with_a_brief_top(rate=1000.0, rest=90.0, top_samples=400):
+    """A slide at rest for ``rest`` s (presliding idle), then swept both ways through five
+    speeds held 4 s each and a sixth, the fastest, held for ``top_samples`` only; friction
+    measured (Stribeck F_s 12, F_c 9, v_s 5 mm/s, σ2 40; noise 0.03). The long rest makes the
+    window derived from the recording's length wider than the fastest run allows."""
+    rng = np.random.default_rng(5)
+    speeds = [2e-3, 4e-3, 8e-3, 1.6e-2, 3.2e-2, 8e-2]
+
+    def S(v):
+        return np.sign(v) * (9.0 + 3.0 * np.exp(-(np.abs(v) / 5e-3) ** 2) + 40.0 * np.abs(v))
+
+    v = [np.zeros(int(rest * rate))]
+    for sign in (1.0, -1.0):
+        for k, s in enumerate(speeds):
+            v += [np.full(top_samples if k == len(speeds) - 1 else int(4 * rate), sign * s), np.zeros(int(0.5 * rate))]
+    v = np.concatenate(v)
+    x = np.cumsum(v) / rate + rng.normal(0, 2e-7, len(v))
+    F = np.where(v != 0, S(v), 0.0) + rng.normal(0, 0.03, len(v))
+    df = pd.DataFrame({"time [s]": np.arange(len(v)) / rate, "position [m]": x, "friction [N]": F})
+    return df, S, speeds[-1]
+
+
+def test_a_sweeps_brief_fastest_speed_is_taken_at_a_shorter_window():
+    # a long recording's window (n/1000 samples at least) is wider than a sweep's fastest
+    # speed was held; those runs are taken again at a shorter window, the others kept at the
+    # derived one, and the level found there is S(v) at that speed
+    from leuven_friction.identify.fit import with_fastest_levels
+    from leuven_friction.identify.segment import constant_velocity_levels, prepare
+
+    df, S, v_top = _sweep_with_a_brief_top()
+    prep = prepare(_rec(df, "brief.csv"))
+    before = constant_velocity_levels(prep)
+    assert np.max(np.abs(before.velocity)) < 0.5 * v_top  # the precondition: the derived window loses it
+    after, said = with_fastest_levels(prep, before)
+    top = np.abs(after.velocity) > 0.5 * v_top
+    assert top.any() and np.all(np.isin(before.velocity, after.velocity)), said
+    np.testing.assert_allclose(np.abs(after.velocity[top]), v_top, rtol=0.01)
+    # each within 4 σ of the curve it was drawn from (σ of its mean, and the rounding of v)
+    err = np.abs(after.friction[top] - S(after.velocity[top])) / np.sqrt(after.variance[top])
+    assert np.all(err < 4.0), (after.friction[top], err)
+    assert f"the others at {prep.th.window}" in said and "taken from them at a window of" in said
