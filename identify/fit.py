@@ -29,8 +29,8 @@ from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_spee
                      stribeck_plus_viscous)
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (FASTER_THAN_LEVELS, GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared,
-                      constant_velocity_levels, crossing_range, crossings, fast_runs_cut_short, force_branches,
-                      motion_branches, noise_sd, prepare, short_fast_runs, sliding_levels)
+                      constant_velocity_levels, crossing_range, crossings, fast_runs, force_branches,
+                      motion_branches, noise_sd, prepare, sliding_levels)
 from .threads import one_blas_thread
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
@@ -209,34 +209,44 @@ def widened_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
 def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "auto",
                         thresholds: dict | None = None) -> tuple[Levels, str]:
     """A recording's levels with its fastest speeds added where a sweep held them for less
-    than ``min_run`` (two windows: ``segment.fast_runs_cut_short``), and what was done, in
+    than ``min_run`` (two windows: ``segment.fast_runs``), and what was done, in
     words ("" if nothing). The window is derived from the recording's length (n/1000 samples at
     least), so a long session's short top speeds fall under it: a nanopositioning stage made
     apart, 174,000 rows at 2 kHz, held its fastest speeds for 64 samples against a window of
     173, and its S(v) was held at Coulomb + viscous (F_c 0.151 N for 0.12). Those runs are
-    taken again at the widest of the windows NARROWER, NARROWER², … of the derived one (odd, at
-    least 5 samples) that makes levels of them: only the levels faster than every level found,
-    so the others, and the presliding, keep the derived window's lower velocity noise."""
-    found = fast_runs_cut_short(prep, levels)
+    taken again at the windows NARROWER, NARROWER², … of the derived one (odd, at least 5
+    samples), each adding the levels it makes beyond every level so far, until no faster
+    steady run is left: only those levels are added, so the others, and the presliding, keep the
+    derived window's lower velocity noise."""
+    found = fast_runs(prep, levels)
     if not found:
         return levels, ""
-    said = short_fast_runs(prep, levels)
-    top = {sign: float(np.max(np.abs(levels.velocity[levels.velocity * sign > 0]), initial=0.0)) for sign in (1.0, -1.0)}
-    w = prep.th.window
-    while (w := (int(w * NARROWER) - 1) | 1) >= 5:
+    taken, w, tried, left = [], prep.th.window, prep.th.window, found
+    # each window in turn, narrower until no steady run faster than every level so far is
+    # left (cut short, or too short to settle within): a sweep's speeds above the one a window
+    # takes are held for shorter still
+    while left and (w := (int(w * NARROWER) - 1) | 1) >= 5:
+        tried = w
         narrow = prepare(prep.rec, friction_sign=friction_sign, overrides={**(thresholds or {}), "window": w})
         narrow.th.rel_tol = prep.th.rel_tol  # (as ``widened_levels`` left it)
+        top = {sign: float(np.max(np.abs(levels.velocity[levels.velocity * sign > 0]), initial=0.0))
+               for sign in (1.0, -1.0)}
         more = constant_velocity_levels(narrow)
         beyond = np.array([abs(v) > FASTER_THAN_LEVELS * top[1.0 if v > 0 else -1.0] for v in more.velocity], dtype=bool)
         if beyond.any():
             added = more.kept(beyond, opposing=0, creep=0, trend_alone=0)
-            return (Levels.joined([levels, added]),
-                    f"{len(found)} steady run(s) faster than every level of their side lasted under min_run = "
-                    f"{prep.th.min_run} samples (two windows of {prep.th.window}; the longest "
-                    f"{max(n for _, n in found)}): {int(beyond.sum())} level(s) taken from them at a window of {w} "
-                    f"(|v| {', '.join(f'{v:.3g}' for v in np.sort(np.abs(added.velocity)))}), the others at "
-                    f"{prep.th.window}; set --threshold window to choose one for all")
-    return levels, said + " (no window down to 5 samples made levels of them)"
+            levels = Levels.joined([levels, added])
+            taken.append(f"{int(beyond.sum())} at a window of {w} (|v| "
+                         f"{', '.join(f'{v:.3g}' for v in np.sort(np.abs(added.velocity)))})")
+        left = fast_runs(narrow, levels, cut_short=False)
+    said = (f"{len(found)} steady run(s) faster than every level of their side lasted under min_run = "
+            f"{prep.th.min_run} samples (two windows of {prep.th.window}; the longest {max(n for _, n in found)})")
+    if not taken:
+        return levels, said + " and no window down to 5 samples made levels of them"
+    lost = (f"; {len(left)} faster run(s) (up to |v| {max(left)[0]:.3g}) are not levels even at a window of {tried}"
+            if left else "")
+    return levels, (f"{said}: level(s) taken from them, {'; '.join(taken)}, the others at {prep.th.window}{lost}; "
+                    f"set --threshold window to choose one for all")
 
 
 NARROWER = 2.0 / 3.0  # each window tried for a sweep's fastest runs is this fraction of the one before

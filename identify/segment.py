@@ -443,16 +443,16 @@ def steady_runs(prep: Prepared):
             yield a, int(s0), int(e0)
 
 
-def fast_runs_cut_short(prep: Prepared, levels: Levels) -> list[tuple[float, int]]:
+def fast_runs(prep: Prepared, levels: Levels, *, cut_short: bool = True) -> list[tuple[float, int]]:
     """(|v|, samples) of each steady run faster than every level of its side (by half as much
-    again) but shorter than ``min_run`` (two windows): a sweep's fastest speeds held for less
-    time than the window the velocity is smoothed over asks (a pitch bearing made apart held
-    2 °/s for 7 s at 50 Hz; the window derived from its 141,000 rows was 141 samples, and its
-    fastest level was lost until ``--threshold window=41``)."""
+    again), only those shorter than ``min_run`` (two windows) where ``cut_short``: a sweep's
+    fastest speeds held for less time than the window the velocity is smoothed over asks (a
+    pitch bearing made apart held 2 °/s for 7 s at 50 Hz; the window derived from its 141,000
+    rows was 141 samples, and its fastest level was lost until ``--threshold window=41``)."""
     th, v = prep.th, prep.velocity
     found = []
     for a, s0, e0 in steady_runs(prep):
-        if not MIN_RUN_FLOOR <= e0 - s0 < th.min_run:
+        if e0 - s0 < MIN_RUN_FLOOR or (cut_short and e0 - s0 >= th.min_run):
             continue
         speed = float(np.median(v[a + s0:a + e0]))
         side = np.abs(levels.velocity[levels.velocity * speed > 0])
@@ -462,17 +462,6 @@ def fast_runs_cut_short(prep: Prepared, levels: Levels) -> list[tuple[float, int
 
 
 FASTER_THAN_LEVELS = 1.5  # a run this many times faster than every level of its side is beyond them
-
-
-def short_fast_runs(prep: Prepared, levels: Levels) -> str:
-    """``fast_runs_cut_short`` in words ("" if none)."""
-    found = fast_runs_cut_short(prep, levels)
-    if not found:
-        return ""
-    th = prep.th
-    return (f"{len(found)} steady run(s) faster than every level of their side (up to |v| {max(found)[0]:.3g}) lasted "
-            f"under min_run = {th.min_run} samples (two windows of {th.window}; the longest {max(n for _, n in found)}) "
-            f"and are not levels: a shorter window (--threshold window=…) takes them, at more velocity noise")
 
 
 def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) -> Levels:

@@ -800,11 +800,12 @@ def test_a_value_is_written_to_the_digits_its_sigma_reaches():
     assert to_its_sd(36.0, 1.0) == "36.00"
 
 
-def test_a_sweeps_fastest_speed_held_shorter_than_two_windows_is_said_with_the_window_that_takes_it():
+def test_a_sweeps_fastest_speed_held_shorter_than_two_windows_is_taken_and_said_with_its_window():
     # four slow levels of 40 s and a fast stroke of 0.6 s each way, at 1 kHz (the window derived
     # from 206,000 rows is 205 samples or more: min_run ≥ 410); friction Coulomb + viscous
     from leuven_friction.identify.data import Recording
-    from leuven_friction.identify.segment import constant_velocity_levels, prepare, short_fast_runs
+    from leuven_friction.identify.fit import with_fastest_levels
+    from leuven_friction.identify.segment import constant_velocity_levels, fast_runs, prepare
 
     rng = np.random.default_rng(2)
     plan = [(0.01, 40), (-0.01, 40), (0.02, 40), (-0.02, 40), (0.1, 0.6), (0, 2), (-0.1, 0.6), (0, 2.8)]
@@ -817,53 +818,59 @@ def test_a_sweeps_fastest_speed_held_shorter_than_two_windows_is_said_with_the_w
     prep = prepare(rec)
     lv = constant_velocity_levels(prep)
     assert np.max(np.abs(lv.velocity)) < 0.03  # the fast strokes are no levels at this window
-    said = short_fast_runs(prep, lv)
-    assert said.startswith("2 steady run(s)") and "up to |v| 0.1" in said and "--threshold window" in said, said
-    # with the window it names, they are levels, and nothing is said
+    assert len(fast_runs(prep, lv)) == 2
+    both, said = with_fastest_levels(prep, lv)
+    assert np.sum(np.abs(np.abs(both.velocity) - 0.1) < 0.01) == 2
+    assert said.startswith("2 steady run(s)") and "at a window of" in said and "--threshold window" in said, said
+    # at a window that takes them, they are levels, and nothing is cut short
     short = prepare(rec, overrides={"window": 41})
     lv2 = constant_velocity_levels(short)
     assert np.sum(np.abs(np.abs(lv2.velocity) - 0.1) < 0.01) == 2
-    assert short_fast_runs(short, lv2) == ""
+    assert fast_runs(short, lv2) == []
 
 
-def _sweep_with_a_brief_top(rate=1000.0, rest=90.0, top_samples=400):
+def _sweep_with_a_brief_top(rate=1000.0, rest=90.0):
     """A slide at rest for ``rest`` s (presliding idle), then swept both ways through five
-    speeds held 4 s each and a sixth, the fastest, held for ``top_samples`` only; friction
-    measured (Stribeck F_s 12, F_c 9, v_s 5 mm/s, σ2 40; noise 0.03). The long rest makes the
-    window derived from the recording's length wider than the fastest run allows."""
+    speeds held 4 s each and two faster ones held briefly, the fastest the briefest (400 and
+    250 samples); friction measured (Stribeck F_s 12, F_c 9, v_s 5 mm/s, σ2 40; noise 0.03).
+    The long rest makes the window derived from the recording's length wider than the fast
+    runs allow."""
     rng = np.random.default_rng(5)
-    speeds = [2e-3, 4e-3, 8e-3, 1.6e-2, 3.2e-2, 8e-2]
+    speeds = [2e-3, 4e-3, 8e-3, 1.6e-2, 3.2e-2, 8e-2, 0.2]
+    held = [4000] * 5 + [400, 250]
 
     def S(v):
         return np.sign(v) * (9.0 + 3.0 * np.exp(-(np.abs(v) / 5e-3) ** 2) + 40.0 * np.abs(v))
 
     v = [np.zeros(int(rest * rate))]
     for sign in (1.0, -1.0):
-        for k, s in enumerate(speeds):
-            v += [np.full(top_samples if k == len(speeds) - 1 else int(4 * rate), sign * s), np.zeros(int(0.5 * rate))]
+        for s, n in zip(speeds, held):
+            v += [np.full(n, sign * s), np.zeros(int(0.5 * rate))]
     v = np.concatenate(v)
     x = np.cumsum(v) / rate + rng.normal(0, 2e-7, len(v))
     F = np.where(v != 0, S(v), 0.0) + rng.normal(0, 0.03, len(v))
     df = pd.DataFrame({"time [s]": np.arange(len(v)) / rate, "position [m]": x, "friction [N]": F})
-    return df, S, speeds[-1]
+    return df, S, speeds[-2:]
 
 
-def test_a_sweeps_brief_fastest_speed_is_taken_at_a_shorter_window():
-    # a long recording's window (n/1000 samples at least) is wider than a sweep's fastest
-    # speed was held; those runs are taken again at a shorter window, the others kept at the
-    # derived one, and the level found there is S(v) at that speed
+def test_a_sweeps_brief_fastest_speeds_are_taken_at_shorter_windows():
+    # a long recording's window (n/1000 samples at least) is wider than a sweep's two fastest
+    # speeds were held; those runs are taken again at shorter windows, each as short as its
+    # speed needs, the others kept at the derived one, and the levels found there are S(v) at
+    # those speeds
     from leuven_friction.identify.fit import with_fastest_levels
     from leuven_friction.identify.segment import constant_velocity_levels, prepare
 
-    df, S, v_top = _sweep_with_a_brief_top()
+    df, S, fast = _sweep_with_a_brief_top()
     prep = prepare(_rec(df, "brief.csv"))
     before = constant_velocity_levels(prep)
-    assert np.max(np.abs(before.velocity)) < 0.5 * v_top  # the precondition: the derived window loses it
+    assert np.max(np.abs(before.velocity)) < 0.5 * fast[0]  # the precondition: the derived window loses them
     after, said = with_fastest_levels(prep, before)
-    top = np.abs(after.velocity) > 0.5 * v_top
-    assert top.any() and np.all(np.isin(before.velocity, after.velocity)), said
-    np.testing.assert_allclose(np.abs(after.velocity[top]), v_top, rtol=0.01)
-    # each within 4 σ of the curve it was drawn from (σ of its mean, and the rounding of v)
-    err = np.abs(after.friction[top] - S(after.velocity[top])) / np.sqrt(after.variance[top])
-    assert np.all(err < 4.0), (after.friction[top], err)
-    assert f"the others at {prep.th.window}" in said and "taken from them at a window of" in said
+    assert np.all(np.isin(before.velocity, after.velocity)), said
+    for v_top in fast:
+        top = np.abs(np.abs(after.velocity) / v_top - 1.0) < 0.01
+        assert top.sum() == 2, (v_top, said)  # one each way
+        # each within 4 σ of the curve it was drawn from (σ of its mean)
+        err = np.abs(after.friction[top] - S(after.velocity[top])) / np.sqrt(after.variance[top])
+        assert np.all(err < 4.0), (v_top, after.friction[top], err)
+    assert f"the others at {prep.th.window}" in said and said.count("at a window of") == 2, said
