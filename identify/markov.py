@@ -289,7 +289,11 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
             # the dip kept — Coulomb + viscous would take F_c up to the slow levels (0.141 N for
             # 0.12, F_s held at it) and lose the dip the levels show
             fit0 = fit_side(levels, sign, hold={"sigma2": 0.0})
-            if not _trouble(fit0, ("Fs", "Fc", "vs", "delta")) and int(np.sum(a < abs(fit0.values["vs"]))) >= 2:
+            # (kept only where that form fits the levels: a pin-on-disc running in along its
+            # sliding distance had levels that no S(v) follows, χ² 4.3·10⁵ for 10, and its dip
+            # was the run-in's)
+            if (not _trouble(fit0, ("Fs", "Fc", "vs", "delta")) and int(np.sum(a < abs(fit0.values["vs"]))) >= 2
+                    and not misfits(fit0)):
                 return SideDecision(fit0, {"sigma2": (f"not determined by the levels (σ2 = {fit.values['sigma2']:.3g} ± "
                                                       f"{fit.stderr['sigma2']:.2g} beside the Stribeck curve): held at 0")},
                                     "Stribeck (σ2 held at 0)")
