@@ -264,7 +264,8 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
     """Fit what the levels of one side determine, hold the rest with a stated reason.
 
     ≥ 6 levels, two of them below the fitted Stribeck velocity: the full eq. (7) + σ2·v; if σ2
-    alone is not determined, it is held at 0 and eq. (7) refitted; if δ
+    alone is not determined, it is held at 0 and eq. (7) refitted (kept where that fits the
+    levels); if δ
     is not determined, δ is held at ``delta_hold`` and the rest refitted; if vs, Fs still are
     not, or fewer levels, or none below vs: Coulomb + viscous (Fs = Fc, vs and δ held);
     one level: Coulomb only (σ2 held at 0); none: the whole side is held."""
