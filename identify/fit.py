@@ -28,7 +28,7 @@ from .errors import IdentificationError
 from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfits,
                      stribeck_plus_viscous)
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .segment import (FASTER_THAN_LEVELS, GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared,
+from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, beyond_levels,
                       constant_velocity_levels, crossing_range, crossings, fast_runs, force_branches,
                       motion_branches, noise_sd, prepare, sliding_levels)
 from .threads import one_blas_thread
@@ -229,10 +229,8 @@ def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "au
         tried = w
         narrow = prepare(prep.rec, friction_sign=friction_sign, overrides={**(thresholds or {}), "window": w})
         narrow.th.rel_tol = prep.th.rel_tol  # (as ``widened_levels`` left it)
-        top = {sign: float(np.max(np.abs(levels.velocity[levels.velocity * sign > 0]), initial=0.0))
-               for sign in (1.0, -1.0)}
         more = constant_velocity_levels(narrow)
-        beyond = np.array([abs(v) > FASTER_THAN_LEVELS * top[1.0 if v > 0 else -1.0] for v in more.velocity], dtype=bool)
+        beyond = beyond_levels(more.velocity, levels)
         if beyond.any():
             added = more.kept(beyond, opposing=0, creep=0, trend_alone=0)
             levels = Levels.joined([levels, added])

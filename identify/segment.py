@@ -455,10 +455,18 @@ def fast_runs(prep: Prepared, levels: Levels, *, cut_short: bool = True) -> list
         if e0 - s0 < MIN_RUN_FLOOR or (cut_short and e0 - s0 >= th.min_run):
             continue
         speed = float(np.median(v[a + s0:a + e0]))
-        side = np.abs(levels.velocity[levels.velocity * speed > 0])
-        if speed != 0 and abs(speed) > FASTER_THAN_LEVELS * (float(np.max(side)) if len(side) else 0.0):
+        if beyond_levels([speed], levels)[0]:
             found.append((abs(speed), e0 - s0))
     return found
+
+
+def beyond_levels(speeds, levels: Levels) -> np.ndarray:
+    """Whether each speed is faster than every level of its side (its sign) by
+    FASTER_THAN_LEVELS: a sweep's speed the levels so far do not reach."""
+    v = np.asarray(speeds, dtype=float)
+    top = {sign: float(np.max(np.abs(levels.velocity[levels.velocity * sign > 0]), initial=0.0))
+           for sign in (1.0, -1.0)}
+    return np.array([s != 0 and abs(s) > FASTER_THAN_LEVELS * top[1.0 if s > 0 else -1.0] for s in v], dtype=bool)
 
 
 FASTER_THAN_LEVELS = 1.5  # a run this many times faster than every level of its side is beyond them
