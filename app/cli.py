@@ -16,6 +16,8 @@ class UserError(FrictionError):
 # one text for every command that reads a recording (the mapping itself: ``identify.data.parse_column_mapping``)
 COLUMNS_HELP = ("column mapping, e.g. time=t,position=q,{example}; force=-F takes column F with its sign "
                 "turned; velocity=- takes no column for a signal")
+UNITS_HELP = ("units of signals, over the header's own, as its brackets would give them, e.g. "
+              "'force=0.025 N*m,time=ms' (a motor current in A: its torque constant per A as the unit)")
 
 
 def _params(path: str | None, model: str | None):
@@ -138,14 +140,15 @@ def cmd_simulate(args) -> int:
         raise UserError("simulate: give --experiment NAME, --input REC.csv or --list")
     if args.smooth_path and args.drive != "displacement":
         raise UserError("--smooth-path: only with --drive displacement (the logged position is what is smoothed)")
-    from ..identify.data import load_recording, parse_column_mapping
+    from ..identify.data import load_recording, parse_column_mapping, parse_unit_mapping
     from ..model.simulate import simulate_displacement, simulate_force
 
     cols = parse_column_mapping(args.columns)
     need = ("time", "position") if args.drive == "displacement" else ("time", "force")
     stages = _Stages()
     # only what the drive and the effects use: a gap in a friction column does not stop a simulation
-    rec = load_recording(_recording(args.input), columns=cols, require=need, only=need + ("normal_load",))
+    rec = load_recording(_recording(args.input), columns=cols, units=parse_unit_mapping(args.units), require=need,
+                         only=need + ("normal_load",))
     stages.verbose = len(rec) >= _BIG_RECORDING
     stages.done(f"read {len(rec)} rows from {args.input}")
     if not args.params:
@@ -261,7 +264,7 @@ def _threshold_items(items) -> dict:
 
 
 def cmd_diagnose(args) -> int:
-    from ..identify.data import load_recording, parse_column_mapping
+    from ..identify.data import load_recording, parse_column_mapping, parse_unit_mapping
     from ..identify.diagnose import diagnose, reading_overrides
     from ..identify.fit import fit_recordings
     from ..identify.paramfile import params_to_yaml
@@ -273,7 +276,8 @@ def cmd_diagnose(args) -> int:
     reading = reading_overrides(_threshold_items(args.threshold))  # a bad setting is refused before any file is read
     outputs = Outputs({"--json": args.json, "--html": args.html, "--out": args.out})  # checked before the work
     cols = parse_column_mapping(args.columns)
-    rec = load_recording(_recording(args.data), columns=cols, require=("time", "position"))
+    rec = load_recording(_recording(args.data), columns=cols, units=parse_unit_mapping(args.units),
+                         require=("time", "position"))
     say_if_compiling()
     if args.params:
         params = _params(args.params, None)
@@ -331,7 +335,7 @@ def _positive_n(text: str) -> float:
 
 
 def cmd_fit(args) -> int:
-    from ..identify.data import load_recording, parse_column_mapping
+    from ..identify.data import load_recording, parse_column_mapping, parse_unit_mapping
     from ..identify.fit import fit_recordings
     from ..identify.paramfile import params_to_yaml
     from .outputs import Outputs
@@ -345,7 +349,9 @@ def cmd_fit(args) -> int:
 
     Thresholds.checked(overrides)  # a bad setting is refused before any file is read
     # every fit finds its levels and branches in the position: a file without one is refused as it is read
-    recs = [load_recording(_recording(path), columns=cols, require=("time", "position")) for path in args.data]
+    units = parse_unit_mapping(args.units)
+    recs = [load_recording(_recording(path), columns=cols, units=units, require=("time", "position"))
+            for path in args.data]
     from ..identify.segment import check_force_or_friction
 
     for r in recs:
@@ -504,6 +510,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "sensor noise are measurement, not motion; the output's position column is that path); "
                         "default: the position as logged")
     s.add_argument("--columns", help=COLUMNS_HELP.format(example="force=tau"))
+    s.add_argument("--units", help=UNITS_HELP)
     s.add_argument("--out", help="output table: CSV, or Parquet for a .parquet name")
     s.set_defaults(func=cmd_simulate)
 
@@ -511,6 +518,7 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("data", nargs="+", help="recorded CSV/TSV files (or sample:NAME for a shipped one, see `samples`)")
     f.add_argument("--out", required=True, help="parameter YAML to write")
     f.add_argument("--columns", help=COLUMNS_HELP.format(example="force=tau"))
+    f.add_argument("--units", help=UNITS_HELP)
     f.add_argument("--params", help="starting/default parameters for what the data cannot determine")
     f.add_argument("--n", default="7", help="exponent n of eq. (5) (default 7, as the paper)")
     f.add_argument("--fit-n", action="store_true", help="estimate n as well")
@@ -527,6 +535,7 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("data", help="recorded CSV/TSV (time, position, and friction or applied force), or sample:NAME")
     d.add_argument("--params", help="current model (default: fit the base model to the data first)")
     d.add_argument("--columns", help=COLUMNS_HELP.format(example="friction=F"))
+    d.add_argument("--units", help=UNITS_HELP)
     d.add_argument("--json", help="write the result (effects named, gap per step, regimes, candidates with their "
                                   "cross-validation evidence, confounded pairs) as JSON")
     d.add_argument("--html", help="write a self-contained HTML report")

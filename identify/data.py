@@ -155,20 +155,33 @@ def is_current_unit(unit: str | None) -> bool:
     return unit is not None and unit.strip().lower() in CURRENTS
 
 
+def current_word(column: str) -> str | None:
+    """The current unit a header name without brackets writes as its last word, as spelled
+    (``current_A`` → "A", ``iq_mA`` → "mA"), or None: a motor current logged so is still no
+    force (a haptic joint made apart, ``current_A`` named as its force, was read in N·m)."""
+    key, unit = _split_header(column)
+    words = [w for w in key.split("_") if w]
+    if unit is not None or len(words) < 2 or words[-1] not in CURRENTS:
+        return None
+    return _as_spelled(column, words[-1])
+
+
 def is_mass_unit(unit: str | None) -> bool:
     return unit is not None and unit.strip().lower() in MASSES
 
 
-def _current_fix(name: str, unit: str) -> str:
-    """What to write for a column ``name`` logged as a motor current in ``unit`` (one of
+def _current_fix(column: str, unit: str) -> str:
+    """What to write for a column logged as a motor current in ``unit`` (one of
     CURRENTS): the torque (or force) constant per that unit as its unit. (In mA the constant
     per mA is a thousandth of the N·m/A a data sheet gives: '[0.05 N*m]' over a current in mA
     reads a thousand times the torque, which nothing downstream can tell.)"""
+    m = _UNIT_RE.match(str(column).strip())
+    name = (m.group(1) if m else str(column)).strip()  # as the file spells it, without its unit
     milli = unit.strip().lower() == "ma"
     rotary, linear = ("0.12 mN*m", "35 mN") if milli else ("0.12 N*m", "35 N")
     return (f"a motor current is no force: the torque is the motor's torque constant times it; write that constant "
             f"per {'mA' if milli else 'A'} as its unit, e.g. '{name} [{rotary}]' for 0.12 N·m/A (a linear motor: "
-            f"'{name} [{linear}]' for 35 N/A)")
+            f"'{name} [{linear}]' for 35 N/A), or give it as --units \"force={rotary}\"")
 
 
 def _counts_fix(name: str) -> str:
@@ -290,10 +303,11 @@ class Recording:
         if could:
             return "; ".join(could)
         currents = [(c, key, unit) for c in self.ignored for key, unit in [_split_header(c)]
-                    if is_current_unit(unit)]
+                    if is_current_unit(unit or current_word(c))]
         if currents and {"force", "friction"} & set(signals):
             col, key, unit = currents[0]
-            return f"column {col!r} is a current ({unit}): {_current_fix(key, unit)}"
+            unit = unit or current_word(col)
+            return f"column {col!r} is a current ({unit}): {_current_fix(col, unit)}"
         return f"none of {_listing(self.ignored)} was recognised as one" if self.ignored else ""
 
     def __len__(self) -> int:
@@ -383,6 +397,25 @@ def columns_option(sig: str, col: str, negated: bool = False) -> str:
     turned if ``negated``), quoted for a shell where the name has a space or a bracket."""
     pair = f"{sig}={NEGATED if negated else ''}{col}"
     return f'--columns "{pair}"' if re.search(r"[\s\[\]()*;&|<>$'\\]", pair) else f"--columns {pair}"
+
+
+def parse_unit_mapping(spec: str | None) -> dict:
+    """'force=0.025 N*m,time=ms' -> {'force': '0.025 N*m', 'time': 'ms'}: each signal's unit,
+    as a header's brackets would give it (over the header's own), for a file that cannot be
+    edited (a motor current in A, its torque constant the unit)."""
+    if not spec:
+        return {}
+    out = {}
+    for part in spec.split(","):
+        if "=" not in part:
+            raise DataError(f"--units: expected signal=unit pairs separated by commas, got {part!r}")
+        k, v = (s.strip() for s in part.split("=", 1))
+        if k not in SIGNALS:
+            raise DataError(f"--units: unknown signal {k!r}; known: {', '.join(SIGNALS)}")
+        if not v:
+            raise DataError(f"--units: no unit given for {k}")
+        out[k] = v
+    return out
 
 
 def parse_column_mapping(spec: str | None) -> dict:
@@ -579,6 +612,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             # words does ('force_kN' as force in kN, '-position/mm' turned and in mm): read as
             # SI, a guideway's force in kN came out a thousand times too small
             headers[found] = (key, _as_spelled(found, word))
+        elif unit is None and sig in ("force", "friction") and (word := current_word(found)) is not None:
+            headers[found] = (key, word)  # refused below as a current, with the constant to write
     taken = set(mapping.values())
     for sig in SIGNALS:
         if sig in mapping or sig in refused:
@@ -719,7 +754,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                     raise DataError(f"{path}: column {col!r}: unit {unit!r} counts steps without saying their size: "
                                     f"{_counts_fix(headers[col][0])}")
                 if is_current_unit(unit) and sig in ("force", "friction"):
-                    raise DataError(f"{path}: column {col!r}: unit {unit!r}: {_current_fix(headers[col][0], unit)}")
+                    raise DataError(f"{path}: column {col!r}: unit {unit!r}: {_current_fix(col, unit)}")
                 if is_current_unit(unit) and sig == "normal_load":
                     # (a valve's motor current named as its load was told "unknown unit 'A'")
                     raise DataError(f"{path}: column {col!r}: unit {unit!r} is a current, not a load: a motor's current "

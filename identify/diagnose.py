@@ -668,6 +668,34 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
                  f"{8 * L0 + 1} and {32 * L0 + 1} samples)")
 
 
+def inertia_ceiling(rec: Recording) -> float | None:
+    """The largest inertia of eq. (8) a recording of applied force and position allows, where it
+    reads none (``recording_inertia``): I·ā = f̄ − F̄, and the friction lies within the range of
+    the force (it equals it while sliding steadily), so I·|ā| ≤ span(f̄) wherever the mean
+    acceleration reaches |ā| — taken at its 99th percentile over the reading's first averaging
+    (8L + 1 samples), so that one noisy sample does not set it. None where that acceleration is
+    within CEILING_NOISE times its own noise (√2·v_noise over the span: the accelerations are not
+    seen), or no force and position are logged. An upper bound, not an estimate: a haptic joint
+    made apart (2·10⁻⁴ kg·m², current × k_t logged, too little steady sliding to read I) reads
+    1.8·10⁻³, where the built-in default, another machine's, is 5."""
+    if rec.force is None or rec.position is None or rec.friction is not None or len(rec.time) < 50:
+        return None
+    m = motion_reading(rec)
+    vel, v_noise = m.tachometer or (m.velocity, m.v_noise)
+    f = np.asarray(rec.force, dtype=np.float64)
+    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
+    L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t),
+                          averaging_limit(m.t, m.compared.path, m.min_excursion))
+    n_avg = 8 * L0 + 1
+    a_top = float(np.quantile(np.abs(mean_acceleration(vel, m.t, n_avg)), 0.99))
+    if a_top <= CEILING_NOISE * math.sqrt(2.0) * v_noise / ((n_avg - 1) * m.dt):
+        return None
+    return float(np.ptp(uniform_filter1d(f, n_avg, mode="nearest"))) / a_top
+
+
+CEILING_NOISE = 3.0  # the acceleration that sets ``inertia_ceiling`` must stand this many times over its noise
+
+
 INERTIA_ATTENUATION = 0.02  # the noise of the mean acceleration may take at most this share of its variance
 
 
@@ -4101,9 +4129,11 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                           f"written: a misfit of the model that follows the acceleration enters it too)")
         if cmp_.inertia + d_i < INERTIA_ABSENT * cmp_.inertia:
             # a measured friction logged under a force's name (``torque``) carries no I·ẍ at all
-            cmp_.notes.append(f"that is under {INERTIA_ABSENT:.0%} of the inertia the friction was taken with: the "
-                              f"column read as the applied force shows almost no inertial term: {NAME_IT_FRICTION}; "
-                              f"if it is the applied force, give this machine's inertia (--params)")
+            what = ("no positive inertia at all" if cmp_.inertia + d_i <= 0 else
+                    f"under {INERTIA_ABSENT:.0%} of the inertia the friction was taken with")
+            cmp_.notes.append(f"that is {what}: the column read as the applied force shows almost no inertial term "
+                              f"(or a misfit of the model follows the acceleration): {NAME_IT_FRICTION}; if it is the "
+                              f"applied force, give this machine's inertia (--params)")
     regimes = {}
     # what the file written predicts: nothing named, it is the model as given (the base refitted
     # alone is a step of the report, not the file: the diagnosis adds effects, `fit` makes bases)

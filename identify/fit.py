@@ -863,7 +863,7 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
     at the data's own reading where there is one (``_held_inertia``: ``reading_sigma1`` is the
     σ1 of the model read beside), else at the built-in default; named as held either way."""
 
-    from .diagnose import recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
+    from .diagnose import inertia_ceiling, recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
 
     reads, loose = [], []  # usable readings; readings too uncertain to write as an estimate
     for r in recordings:
@@ -881,6 +881,18 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
             value, why = held_at
             held["inertia"] = (f"{why}: held at that reading, not at the built-in default {p.inertia:.4g} (another "
                                f"machine's; give --params with this machine's)")
+            return p.replace(inertia=value), None
+    if not reads and not from_file:
+        ceilings = [c for r in recordings if (c := inertia_ceiling(r)) is not None]
+        if ceilings and min(ceilings) < p.inertia:
+            # the built-in default is another machine's: where the force could not accelerate it as
+            # the record moves, it is no value for this one (a haptic joint made apart, 2·10⁻⁴
+            # kg·m², had 5 held, and σ1 derived from it 150 times its own)
+            value = min(ceilings)
+            held["inertia"] = (f"not determined by the recordings (see the notes); the built-in default {p.inertia:.4g} "
+                               f"is more than the applied force's span can accelerate as this record does: held at "
+                               f"that ceiling, {value:.4g} — an upper bound, not an estimate (give --params with this "
+                               f"machine's)")
             return p.replace(inertia=value), None
     if not reads:
         held["inertia"] = f"not determined by the recordings (see the notes): kept {start}"

@@ -611,3 +611,36 @@ def test_a_current_named_as_the_load_is_told_it_is_no_load(tmp_path):
         load_recording(path, columns={"normal_load": "motor_current [A]"})
     msg = str(e.value)
     assert "is a current, not a load" in msg and "--columns normal_load=" in msg and "\n" not in msg, msg
+
+
+def test_a_current_whose_unit_is_the_last_word_of_its_name_is_no_force(tmp_path):
+    # a haptic joint made apart logged `current_A`: named as the force, it was read in N·m
+    path = tmp_path / "c.tsv"
+    path.write_text("t_s\tangle_rad\tcurrent_A\n" + "".join(f"{i * 0.01}\t{i * 1e-4}\t{0.4 * (-1) ** i}\n"
+                                                           for i in range(20)))
+    for columns in ({"force": "current_A"}, {"friction": "current_A"}):
+        with pytest.raises(DataError) as e:
+            load_recording(path, columns=columns)
+        msg = str(e.value)
+        assert "column 'current_A'" in msg and "a motor current is no force" in msg, msg
+        assert "'current_A [0.12 N*m]'" in msg and '--units "force=0.12 N*m"' in msg and "\n" not in msg, msg
+    # not named: the reason none was taken as the force (`fit`'s message) says it too
+    why = load_recording(path).unrecognised("force", "friction")
+    assert "column 'current_A' is a current (A)" in why and "per A as its unit" in why, why
+
+
+def test_units_given_apart_from_the_file_read_it_as_its_headers_would(tmp_path):
+    rows = [(i * 0.001, i * 2e-3, 0.4 * np.sin(i)) for i in range(50)]
+    plain = tmp_path / "p.tsv"
+    plain.write_text("t_ms\tangle\tcurrent_A\n" + "".join(f"{t * 1e3}\t{x}\t{c}\n" for t, x, c in rows))
+    from leuven_friction.identify.data import parse_unit_mapping
+
+    units = parse_unit_mapping("force=0.025 N*m, position=mrad")
+    rec = load_recording(plain, columns={"force": "current_A"}, units=units)
+    assert np.allclose(rec.force, [0.025 * c for *_, c in rows], rtol=1e-12)  # the torque constant × the current
+    assert np.allclose(rec.position, [1e-3 * x for _, x, _ in rows], rtol=1e-12)
+    assert np.allclose(rec.time, [t for t, *_ in rows], rtol=1e-9)  # its own `_ms` word still read
+    for bad, said in (("force", "expected signal=unit"), ("speed=mm/s", "unknown signal 'speed'"),
+                      ("force=", "no unit given for force")):
+        with pytest.raises(DataError, match=said):
+            parse_unit_mapping(bad)
