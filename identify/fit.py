@@ -64,6 +64,25 @@ class FitResult:
         return fit_report(self)
 
 
+def _level_lines(res: FitResult) -> list[str]:
+    """The Markov estimator's points, each with the S(v) + σ2·v written at its speed and how many
+    of its σ apart: where a side misfits, the levels that do (a haptic joint made apart was told
+    its levels misfit Coulomb + viscous, χ² 41.6 for 4, without being shown which)."""
+    from ..model.simulate import stribeck_curve
+
+    lv = res.levels
+    vu, fu = (spec_of(res.params, f"stribeck.positive.{k}").unit for k in ("vs", "Fc"))
+    order = np.argsort(lv.velocity)
+    model = stribeck_curve(res.params, lv.velocity)
+    sd = np.sqrt(np.maximum(lv.variance, 0.0))
+    out = ["[[Levels of S(v): the Markov estimator's points, and S(v) + σ2·v as written there]]",
+           f"    {'v (' + vu + ')':>14s} {'friction (' + fu + ')':>18s} {'± σ':>10s} {'written':>12s} {'off (σ)':>8s}"]
+    for i in order:
+        off = (lv.friction[i] - model[i]) / sd[i] if sd[i] > 0 else float("nan")
+        out.append(f"    {lv.velocity[i]:>14.4g} {lv.friction[i]:>18.5g} {sd[i]:>10.2g} {model[i]:>12.5g} {off:>+8.1f}")
+    return out
+
+
 def _merge_levels(parts: list[Levels]) -> Levels:
     if not parts:
         return Levels(*(np.zeros(0) for _ in range(4)))
@@ -1011,6 +1030,8 @@ def fit_report(res: FitResult) -> str:
     if corr_lines:
         lines.append("[[Correlations (|C| > 0.5)]]")
         lines.extend(corr_lines)
+    if res.levels is not None and len(res.levels.velocity):
+        lines.extend(_level_lines(res))
     tf = res.transition_fit
     if tf is not None:
         lines.append("[[Transition curve F_d — Table II form]]")

@@ -874,3 +874,18 @@ def test_a_sweeps_brief_fastest_speeds_are_taken_at_shorter_windows():
         err = np.abs(after.friction[top] - S(after.velocity[top])) / np.sqrt(after.variance[top])
         assert np.all(err < 4.0), (v_top, after.friction[top], err)
     assert f"the others at {prep.th.window}" in said and said.count("at a window of") == 2, said
+
+
+def test_the_report_shows_each_level_beside_the_curve_written(tmp_path):
+    # a user told "misfits the levels" must see which: each level's speed and friction (the
+    # plant's 2·tanh(v/1 mm/s) + 5·v within 4 of its σ), and the written curve's offset from it
+    res = fit_recordings([load_recording(_stage_csv(tmp_path / "slide.csv", "m", 1.0))], refine=False)
+    text = res.report()
+    block = text.split("[[Levels of S(v)")[1].split("[[")[0].splitlines()[2:]
+    rows = np.array([[float(c) for c in ln.split()] for ln in block if ln.strip()])
+    assert len(rows) == len(res.levels.velocity)
+    assert set(np.round(rows[:, 0], 2)) == {-0.6, -0.2, -0.1, -0.05, 0.05, 0.1, 0.2, 0.6}  # the loop's speeds
+    v, f, sd, written, off = rows.T
+    assert np.all(np.abs(f - (2.0 * np.tanh(v / 1e-3) + 5.0 * v)) < 4 * sd + 1e-4 * np.abs(f)), rows
+    assert np.all(np.abs(off) < 4), rows  # Coulomb + viscous written within the levels' noise
+    assert np.all(np.diff(v) >= 0)  # in order of speed
