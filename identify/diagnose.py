@@ -2886,6 +2886,10 @@ class Diagnosis:
     travel_force: TravelForce | None = None
     # the recording's normal load's SI unit, N or N·m (a tilting moment), where it has one
     load_unit: str | None = None
+    # a candidate that passed where the model before it already left under the noise floor beside
+    # the free steady curve, and so was not named: {name, heldout_gain, folds_improved,
+    # folds_informative, gap_over_noise}
+    under_noise: dict | None = None
 
     @property
     def units(self) -> dict:
@@ -2926,10 +2930,13 @@ class Diagnosis:
 
     def seen_not_named(self) -> list:
         """[(candidate, why it is not named)] of the last round's candidates the evidence shows
-        but the diagnosis does not name (``unsettled``, then ``elsewhere``): the text report and
+        but the diagnosis does not name (``unsettled``, ``elsewhere``, then ``under_noise``): the text report and
         the HTML list the same ones for the same reasons."""
+        un = self.under_noise
         return ([(c, c["unsettled"]) for c in self.unsettled]
-                + [(c, self.not_where_it_shows(c)) for c in self.elsewhere])
+                + [(c, self.not_where_it_shows(c)) for c in self.elsewhere]
+                + ([(un, f"the model before it leaves {un['gap_over_noise']:.2f} × the noise floor: what it takes is "
+                         f"within the noise")] if un is not None else []))
 
     def seen_unnamed(self) -> bool:
         """Whether any candidate was seen and not named (``seen_unnamed``)."""
@@ -2978,6 +2985,7 @@ class Diagnosis:
             "space": self.space, "noise": self.noise, "rms_before": self.rms_before, "rms_after": self.rms_after,
             "rms_base_refit": self.rms_base_refit, "steps": self.steps, "regimes": self.regimes,
             "confounded": self.confounded, "unsettled": [c["name"] for c in self.unsettled], "unused": self.unused,
+            "under_noise": self.under_noise,
             "base_off": self.base_off,
             "travel_force": None if self.travel_force is None else asdict(self.travel_force),
             "elsewhere": [c["name"] for c in self.elsewhere], "written_effects": self.written_effects(),
@@ -2998,6 +3006,9 @@ class Diagnosis:
         L = []
         if self.effects:
             L.append("Missing effects named (out-of-sample evidence): " + ", ".join(self.named_labels()))
+        elif self.under_noise is not None:
+            L.append("No missing effect named: the model already leaves less than the noise floor beside the free "
+                     "steady curve, so nothing beyond the noise is left for an effect to explain.")
         elif self.confounded:
             L.append("No missing effect named: what improves the held-out prediction is explained as well by two "
                      "candidates confounded with each other (below).")
@@ -3772,6 +3783,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
     # the last winner, the rivals it did not clearly beat, the state before it was named, and the
     # alike rivals told apart in its favour
     pending = None
+    under_noise = None  # a winner not named: the model before it already under the noise floor
     carried: tuple = ()  # a round taken back: the better ones of the pairs it had found confounded
     for _ in range(2 * s.max_effects):  # a round taken back (below) excludes two candidates or more
         step = len(named)
@@ -3949,6 +3961,22 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         winner, beaten, blocked = choice.winner, choice.beaten, choice.blocked
         excluded |= blocked
         if winner is None:
+            break
+        gap_now = _rms((meas - cur.pred)[allm])
+        if gap_now < cmp_.noise:
+            # a model that already leaves less than the noise alone would leaves nothing for an
+            # effect to explain: what a candidate gains there is the noise's own structure (a
+            # haptic joint made apart, its encoder coarser than its presliding, had a ripple named
+            # at 0.56 → 0.48 noise floors) — or an effect the noise floor hides, which is said
+            cmp_.notes.append(f"{winner.name} passed (held out {winner.heldout_gain:.1%}, folds {winner.folds_improved}/"
+                              f"{winner.folds_informative}), but the model before it already leaves {gap_now:.4g} beside "
+                              f"the free steady curve, {gap_now / cmp_.noise:.2f} × the noise floor: nothing beyond the "
+                              f"noise is left for an effect to explain, so none is named (what it gains is the noise's "
+                              f"own structure, or an effect as small as the noise, which this record cannot show)")
+            under_noise = {"name": winner.name, "heldout_gain": float(winner.heldout_gain),
+                           "folds_improved": int(winner.folds_improved),
+                           "folds_informative": int(winner.folds_informative),
+                           "gap_over_noise": float(gap_now / cmp_.noise)}
             break
         for c in cands_out:
             c["significant"] = c["name"] == winner.name
@@ -4264,7 +4292,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      reading={"window": int(cmp_.window), "v_rest": float(cmp_.v_rest),
                               "min_excursion": float(cmp_.min_excursion)}, base_off=base_off,
                      travel_force=tf if tf is not None and tf.shown else None,
-                     load_unit=rec.units.get("normal_load") if rec.normal_load is not None else None)
+                     load_unit=rec.units.get("normal_load") if rec.normal_load is not None else None,
+                     under_noise=under_noise)
 
 
 WRITTEN_NFEV = 20  # least-squares iterations per step of the model written
