@@ -32,8 +32,8 @@ def forced_bristle_mass(mass: float, seconds: float = 20.0, rate: float = 1000.0
     """A mass ``mass`` under an applied force of two sines (1.6 N at 0.4 Hz, 0.5 N at 3.1 Hz),
     its friction a bristle (Dahl-like, stiffness 2·10⁴ N/m) whose limit follows a Gaussian
     Stribeck curve (F_c 0.5, F_s 0.7 N, v_s 0.01 m/s) plus 0.3 N·s/m viscous; explicit Euler at
-    ``sub`` substeps a sample, the position logged on a ``step`` encoder, the force with white
-    noise. It never slides steadily. Returns (t, x, f)."""
+    ``sub`` substeps a sample (the bristle's state implicit), the position logged on a ``step``
+    encoder, the force with white noise. It never slides steadily. Returns (t, x, f)."""
     rng = np.random.default_rng(seed)
     dt, n = 1.0 / (rate * sub), int(seconds * rate)
     x = v = z = 0.0
@@ -44,7 +44,7 @@ def forced_bristle_mass(mass: float, seconds: float = 20.0, rate: float = 1000.0
     for i in range(n):
         for _ in range(sub):
             g = fc + (fs - fc) * np.exp(-(v / vs) ** 2)
-            z += dt * (v - k * abs(v) * z / g)
+            z = (z + dt * v) / (1.0 + dt * k * abs(v) / g)  # implicit in z: k|v|/g·dt reaches 2 at 1 m/s
             v += dt * (f[i] - k * z - s2 * v) / mass
             x += dt * v
         xs[i] = np.round(x / step) * step
