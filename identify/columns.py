@@ -6,7 +6,8 @@ from __future__ import annotations
 
 ALIASES = {  # header names, lower case, units stripped; the German ones as lab software writes them
     "time": ("time", "t", "timestamp", "time_s", "seconds", "zeit"),
-    "position": ("position", "x", "q", "angle", "pos", "displacement", "theta", "joint_angle", "weg", "winkel"),
+    "position": ("position", "x", "q", "angle", "pos", "displacement", "theta", "joint_angle", "carriage", "weg",
+                 "winkel"),
     "force": ("force", "torque", "applied_torque", "applied_force", "u", "tau", "motor_torque", "f", "kraft",
               "moment", "drehmoment"),
     "velocity": ("velocity", "v", "speed", "qd", "omega", "geschwindigkeit"),

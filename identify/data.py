@@ -399,19 +399,25 @@ def columns_option(sig: str, col: str, negated: bool = False) -> str:
     return f'--columns "{pair}"' if re.search(r"[\s\[\]()*;&|<>$'\\]", pair) else f"--columns {pair}"
 
 
+def _signal_pairs(spec: str, option: str, what: str) -> list[tuple[str, str]]:
+    """The 'signal=value' pairs of an option's comma-separated ``spec``, each signal known."""
+    out = []
+    for part in spec.split(","):
+        if "=" not in part:
+            raise DataError(f"{option}: expected signal={what} pairs separated by commas, got {part!r}")
+        k, v = (s.strip() for s in part.split("=", 1))
+        if k not in SIGNALS:
+            raise DataError(f"{option}: unknown signal {k!r}; known: {', '.join(SIGNALS)}")
+        out.append((k, v))
+    return out
+
+
 def parse_unit_mapping(spec: str | None) -> dict:
     """'force=0.025 N*m,time=ms' -> {'force': '0.025 N*m', 'time': 'ms'}: each signal's unit,
     as a header's brackets would give it (over the header's own), for a file that cannot be
     edited (a motor current in A, its torque constant the unit)."""
-    if not spec:
-        return {}
     out = {}
-    for part in spec.split(","):
-        if "=" not in part:
-            raise DataError(f"--units: expected signal=unit pairs separated by commas, got {part!r}")
-        k, v = (s.strip() for s in part.split("=", 1))
-        if k not in SIGNALS:
-            raise DataError(f"--units: unknown signal {k!r}; known: {', '.join(SIGNALS)}")
+    for k, v in _signal_pairs(spec, "--units", "unit") if spec else ():
         if not v:
             raise DataError(f"--units: no unit given for {k}")
         out[k] = v
@@ -421,17 +427,7 @@ def parse_unit_mapping(spec: str | None) -> dict:
 def parse_column_mapping(spec: str | None) -> dict:
     """'time=t,position=q,force=tau' -> {'time': 't', 'position': 'q', 'force': 'tau'};
     ``velocity=-`` -> {'velocity': None}: that signal is taken from no column."""
-    if not spec:
-        return {}
-    out = {}
-    for part in spec.split(","):
-        if "=" not in part:
-            raise DataError(f"--columns: expected signal=column pairs separated by commas, got {part!r}")
-        k, v = (s.strip() for s in part.split("=", 1))
-        if k not in SIGNALS:
-            raise DataError(f"--columns: unknown signal {k!r}; known: {', '.join(SIGNALS)}")
-        out[k] = None if v == NO_COLUMN else v
-    return out
+    return {k: None if v == NO_COLUMN else v for k, v in _signal_pairs(spec, "--columns", "column")} if spec else {}
 
 
 def units_row(df: pd.DataFrame) -> dict | None:

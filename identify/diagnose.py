@@ -622,6 +622,18 @@ NAME_IT_FRICTION = ("if it is measured friction, name it so (friction, friction_
                     "--columns friction=<column>")
 
 
+def _force_reading(rec: Recording) -> tuple[MotionReading, np.ndarray, float, np.ndarray, int]:
+    """What eq. (8) is read from in a record of applied force and position, no inertia given:
+    the motion reading, the velocity and its noise (a tachometer's where quieter), the force,
+    and the shortest averaging (``averaging_length`` at I = 0, within ``averaging_limit``)."""
+    m = motion_reading(rec)
+    vel, v_noise = m.tachometer or (m.velocity, m.v_noise)
+    f = np.asarray(rec.force, dtype=np.float64)
+    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
+    longest = averaging_limit(m.t, m.compared.path, m.min_excursion)
+    return m, vel, v_noise, f, averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
+
+
 def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
     """The inertia of eq. (8) that a recording of applied force and position says by itself
     (``inertia_from_force`` at the shortest averaging, no inertia given), and in words why
@@ -633,12 +645,7 @@ def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
         return None, "not read: the friction is measured, eq. (8) is not needed"
     if len(rec.time) < 50:
         return None, f"not read: {len(rec.time)} samples, too few to regress the force on the acceleration"
-    m = motion_reading(rec)
-    vel, v_noise = m.tachometer or (m.velocity, m.v_noise)
-    f = np.asarray(rec.force, dtype=np.float64)
-    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
-    longest = averaging_limit(m.t, m.compared.path, m.min_excursion)
-    L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
+    m, vel, v_noise, f, L0 = _force_reading(rec)
     reading = inertia_read(f, vel, m.t, L0, m.v_rest, v_motion=m.velocity)
     reversed_why = reversed_force(rec, reading)
     if reversed_why:
@@ -680,12 +687,7 @@ def inertia_ceiling(rec: Recording) -> float | None:
     1.8·10⁻³, where the built-in default, another machine's, is 5."""
     if rec.force is None or rec.position is None or rec.friction is not None or len(rec.time) < 50:
         return None
-    m = motion_reading(rec)
-    vel, v_noise = m.tachometer or (m.velocity, m.v_noise)
-    f = np.asarray(rec.force, dtype=np.float64)
-    f_sd = _mad_sd(np.diff(f)) / math.sqrt(2.0)
-    L0 = averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t),
-                          averaging_limit(m.t, m.compared.path, m.min_excursion))
+    m, vel, v_noise, f, L0 = _force_reading(rec)
     n_avg = 8 * L0 + 1
     a_top = float(np.quantile(np.abs(mean_acceleration(vel, m.t, n_avg)), 0.99))
     if a_top <= CEILING_NOISE * math.sqrt(2.0) * v_noise / ((n_avg - 1) * m.dt):
@@ -3064,8 +3066,11 @@ class Diagnosis:
             if len(label) > STEP_LABEL_WIDTH:  # (the alternative's, with its factors) on a line of its own
                 L.append(f"  {label}")
                 label = ""
+            # a named step's own evidence beside its gaps: what the decision rested on
+            held = (f"   held out −{100 * s['heldout_gain']:.1f} % (folds {s['folds']})"
+                    if s.get("heldout_gain") is not None and s.get("folds") else "")
             L.append(f"  {label:{STEP_LABEL_WIDTH}s} {s['rms']:.4g} ({s['rms'] / nz:.2f} × noise)   "
-                     f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise)")
+                     f"{s['rms_free']:.4g} ({s['rms_free'] / nz:.2f} × noise){held}")
             if s.get("params"):
                 own = "" if "params_decided" in s else f"the file's {s.get('name') or 'effect'}, refitted with it: "
                 L.append("      " + own + format_values(s["name"], s["params"], self.units, s.get("sd")))

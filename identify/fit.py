@@ -22,6 +22,7 @@ from scipy.stats import spearmanr
 
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
 from ..model.params import get_value, spec_of
+from ..model.simulate import stribeck_curve
 
 from .data import Recording
 from .errors import IdentificationError
@@ -68,8 +69,6 @@ def _level_lines(res: FitResult) -> list[str]:
     """The Markov estimator's points, each with the S(v) + σ2·v written at its speed and how many
     of its σ apart: where a side misfits, the levels that do (a haptic joint made apart was told
     its levels misfit Coulomb + viscous, χ² 41.6 for 4, without being shown which)."""
-    from ..model.simulate import stribeck_curve
-
     lv = res.levels
     vu, fu = (spec_of(res.params, f"stribeck.positive.{k}").unit for k in ("vs", "Fc"))
     order = np.argsort(lv.velocity)
@@ -280,10 +279,22 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     MIN_RANGE_BRANCHES crossings). The paper's Markov estimator takes constant-velocity runs; a
     recording made without them (a crank-driven tribometer, a sinusoidal force) still shows
     S(v) wherever its velocity changes slowly against the friction's lag, and that is used
-    instead of holding one speed's value or another machine's S(v)."""
+    instead of holding one speed's value or another machine's S(v). Without a measured friction
+    the applied force less I·ẍ stands for it where the force alone reads the inertia
+    (``friction_by_eq8``)."""
     sides = {1.0: "positive", -1.0: "negative"}
-    if has_speed_sweep(levels) or prep.friction is None:
+    if has_speed_sweep(levels):
         return levels, ""
+    of_force = ""
+    if prep.friction is None:
+        # an applied force, no friction logged: the friction is the force less I·ẍ where the
+        # force alone reads the inertia (eq. (8)); a mass under a sinusoidal force made apart
+        # had its S(v) held at one speed's, the top of its swing (F_c 1.38 N for a friction of
+        # 1.06 there), where its gross sliding spans every speed of the swing
+        taken = friction_by_eq8(prep)
+        if taken is None:
+            return levels, ""
+        prep, of_force = taken
     ranges = [r for c in crossings(prep) if math.isfinite(r := crossing_range(c, prep.th))]
     if len(ranges) < MIN_RANGE_BRANCHES:
         return levels, ""
@@ -305,9 +316,27 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     # (the runs left out are the constant-velocity ones' alone; the sliding has no times)
     joined = Levels.joined([levels.kept(~mine), extra.kept(new)])
     return (dataclasses.replace(joined, opposing=levels.opposing, creep=levels.creep, time=None),
-            f"{words}: S(v) from {int(new.sum())} speed level(s) of steady gross sliding instead (past "
+            f"{words}: S(v) from {int(new.sum())} speed level(s) of steady gross sliding instead{of_force} (past "
             f"{GROSS_SLIDING:g} × {z_range:.3g} of travel after each reversal, the median range over which the "
             f"friction crossed to sliding; the velocity changing by under 5 % over that range; binned in log|v|)")
+
+
+def friction_by_eq8(prep: Prepared) -> tuple[Prepared, str] | None:
+    """``prep`` with its friction taken from the applied force by eq. (8), F = f − I·ẍ (ẍ the
+    mean acceleration over the velocity's window, centred), and the words that say so, where
+    the force alone reads a usable inertia (``diagnose.recording_inertia``: no model enters);
+    else None."""
+    from .diagnose import mean_acceleration, recording_inertia
+
+    if prep.force is None:
+        return None
+    est, _ = recording_inertia(prep.rec)
+    if est is None or not est.usable:
+        return None
+    acc = mean_acceleration(prep.velocity, prep.rec.time, max(prep.th.window, 5) | 1)
+    friction = np.asarray(prep.force, dtype=np.float64) - est.value * acc
+    return (dataclasses.replace(prep, friction=friction),
+            f", of the applied force less I·ẍ (eq. (8); I = {est.value:.4g} ± {est.stderr:.2g}, read from the force)")
 
 
 MAX_BRANCHES, MAX_POINTS = 10, 100

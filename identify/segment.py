@@ -675,8 +675,8 @@ def sliding_levels(prep: Prepared, z_range: float) -> Levels:
     the velocity changes by less than STEADY_TOL of itself (plus ``v_floor``) while the contact
     travels one presliding range — the hysteresis force lags S(v) by about that travel, so
     there it has caught up — pooled by speed (``speed_levels``). A level whose friction
-    opposes its velocity is left out (sliding dissipates). Empty without a measured friction:
-    an applied force would need the inertia, which this fit does not estimate."""
+    opposes its velocity is left out (sliding dissipates). Empty without a measured friction
+    (``fit.friction_by_eq8`` gives one from an applied force where the force reads the inertia)."""
     if prep.friction is None or not z_range > 0:
         return Levels(*(np.zeros(0) for _ in range(4)))
     th, x, t, v = prep.th, prep.rec.position, prep.rec.time, prep.velocity

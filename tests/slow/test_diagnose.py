@@ -341,6 +341,11 @@ def test_an_effect_the_model_written_does_not_use_is_not_named(monkeypatch):
     d = diagnose(rec, params, settings=s)
     assert d.effects == ["time_drift"] and not d.unused, d.text()
     assert seen and seen[-1] > 10 * PRESCREEN * s.min_gain  # the drift does its share itself
+    # the named step's line carries the evidence it was named on (its held-out gain and folds)
+    step = d.steps[2]
+    line = next(ln for ln in d.text().splitlines() if ln.startswith("  + time_drift"))
+    assert f"held out −{100 * step['heldout_gain']:.1f} % (folds {step['folds']})" in line, line
+    assert step["heldout_gain"] >= s.min_gain
     monkeypatch.setattr(D, "own_gain", lambda engine, fit: 0.0)
     d = diagnose(rec, params, settings=s)
     assert d.effects == [] and [c["name"] for c in d.unused] == ["time_drift"], d.text()

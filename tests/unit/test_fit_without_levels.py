@@ -385,3 +385,26 @@ def test_an_effect_of_the_file_that_this_recording_does_not_show_is_said():
     drift = {"name": "time_drift", "params": {"t0": 0.0, "b": truth["b"], "tau": truth["tau"]}}
     d = diagnose(rec, fitted.replace(effects=(drift,)))
     assert not [n for n in d.notes if "is not seen in this recording" in n], d.notes
+
+
+def test_a_mass_under_a_sinusoidal_force_has_s_of_v_from_its_sliding_less_its_inertial_force(tmp_path):
+    # an applied force, no friction logged, no speed held (``tests/unit/plants.py``: 0.2 kg under
+    # two sines of force, a bristle contact under F_c 0.5 N + 0.3 N·s/m·v beyond v_s = 0.01 m/s):
+    # the force alone reads the inertia, and the gross sliding less I·ẍ spans the swing's speeds.
+    # Before, the tops of the swing were taken as levels at one speed (F_c 1.38 N, σ2 held at 0)
+    from tests.unit.plants import forced_bristle_mass
+
+    t, x, f = forced_bristle_mass(0.2, seconds=60.0)
+    path = tmp_path / "sine.csv"
+    path.write_text("time [s],position [m],force [N]\n"
+                    + "".join(f"{a:.17g},{b:.17g},{c:.17g}\n" for a, b, c in zip(t, x, f)))
+    res = fit_recordings([load_recording(path)], refine=False)
+    unc = res.params.uncertainty
+    for side, sign in (("positive", 1.0), ("negative", -1.0)):
+        sp = getattr(res.params.stribeck, side)
+        # the steady curve is F_c + σ2·|v| at every speed the sliding reaches (all ≫ v_s)
+        assert abs(sp.Fc - sign * 0.5) < 3 * unc[f"stribeck.{side}.Fc"], (side, sp.Fc, unc)
+        assert abs(sp.sigma2 - 0.3) < 3 * unc[f"stribeck.{side}.sigma2"], (side, sp.sigma2, unc)
+        speeds = np.abs(res.levels.velocity[res.levels.velocity * sign > 0])
+        assert speeds.max() > 5 * speeds.min()  # a span of speeds, not the swing's top alone
+    assert any("of the applied force less I·ẍ" in n for n in res.notes), res.notes

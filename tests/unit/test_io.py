@@ -644,3 +644,11 @@ def test_units_given_apart_from_the_file_read_it_as_its_headers_would(tmp_path):
                       ("force=", "no unit given for force")):
         with pytest.raises(DataError, match=said):
             parse_unit_mapping(bad)
+
+
+def test_a_carriage_column_is_the_position():
+    # a pick-and-place axis made apart logged `carriage [mm]`; it had to be named on every call
+    text = "time [ms],carriage [mm],motor_force [N]\n" + "".join(f"{i},{i * 0.01},1.5\n" for i in range(20))
+    rec = load_recording(text, name="axis.csv")
+    assert rec.columns["position"] == "carriage [mm]"
+    assert np.allclose(rec.position, [i * 1e-5 for i in range(20)], rtol=1e-12)
