@@ -4124,6 +4124,9 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                              if reidentified else
                              "the model written refitted from it and from the file's, and from the file's left less: "
                              "the file's kept" if final_reid.used else
+                             # (2 levels: both curves pass through them, "0 against 4.7e-18" read as a verdict)
+                             "both within the levels' noise, nothing to tell them apart: the file's kept"
+                             if max(final_reid.gap_new, final_reid.gap_file) <= final_reid.noise else
                              "worse: the file's kept" if final_reid.gap_new >= final_reid.gap_file else
                              f"not clearly better (under {STEADY_MIN_GAIN:.0%} less, or the file's within "
                              f"{STEADY_MISFIT:g} noise sds): the file's kept"))

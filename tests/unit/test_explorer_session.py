@@ -94,6 +94,14 @@ def test_web_messages_name_the_file_and_no_command_line_options():
     msg = web_message(DataError("no column for position (columns: a, b; name them with --columns position=<column>)"),
                       "run7.tsv")
     assert msg.startswith("run7.tsv: ") and "--" not in msg and "Columns in the Data tab" in msg
+    # a motor current: the header's unit is the web user's way to give its constant, not --units
+    from leuven_friction.identify.data import load_recording
+
+    with pytest.raises(DataError) as e:
+        load_recording("t_s,angle_rad,current_A\n" + "".join(f"{i * 0.01},{i * 1e-4},0.4\n" for i in range(20)),
+                       name="joint.csv", columns={"force": "current_A"})
+    msg = web_message(e.value, "joint.csv")
+    assert "--" not in msg and msg.endswith("for 35 N/A)") and "'current_A [0.12 N*m]'" in msg, msg
     assert without_cli_hints("fixed at 7 (the paper's choice; --fit-n estimates it)") == "fixed at 7 (the paper's choice)"
     # the clause that names the option goes whole, not the option alone
     assert (without_cli_hints("held at 5 (another machine's; give --params with this machine's)")
