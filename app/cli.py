@@ -511,12 +511,12 @@ def build_parser() -> argparse.ArgumentParser:
                         "default: the position as logged")
     s.add_argument("--columns", help=COLUMNS_HELP.format(example="force=tau"))
     s.add_argument("--units", help=UNITS_HELP)
-    s.add_argument("--out", help="output table: CSV, or Parquet for a .parquet name")
+    s.add_argument("-o", "--out", help="output table: CSV, or Parquet for a .parquet name")
     s.set_defaults(func=cmd_simulate)
 
     f = sub.add_parser("fit", help="fit S(v) and the transition curve to recorded CSV data", **reads_files)
     f.add_argument("data", nargs="+", help="recorded CSV/TSV files (or sample:NAME for a shipped one, see `samples`)")
-    f.add_argument("--out", required=True, help="parameter YAML to write")
+    f.add_argument("-o", "--out", required=True, help="parameter YAML to write")
     f.add_argument("--columns", help=COLUMNS_HELP.format(example="force=tau"))
     f.add_argument("--units", help=UNITS_HELP)
     f.add_argument("--params", help="starting/default parameters for what the data cannot determine")
@@ -539,7 +539,7 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--json", help="write the result (effects named, gap per step, regimes, candidates with their "
                                   "cross-validation evidence, confounded pairs) as JSON")
     d.add_argument("--html", help="write a self-contained HTML report")
-    d.add_argument("--out", help="write the extended model as YAML")
+    d.add_argument("-o", "--out", help="write the extended model as YAML")
     d.add_argument("--space", choices=("friction", "position"), default="friction",
                    help="where a recording with an applied force (no friction column) is compared: friction taken "
                         "from eq. (8) averaged over a few samples (default), or position by output error of the "
@@ -570,7 +570,7 @@ def build_parser() -> argparse.ArgumentParser:
     sm = sub.add_parser("samples", help="list the sample recordings shipped with the package, or copy them out")
     sm.add_argument("names", nargs="*", help="which samples (default: all); see --list")
     sm.add_argument("--list", action="store_true", help="list them (the default without --out)")
-    sm.add_argument("--out", help="directory to copy the CSV files into (created if its parent exists)")
+    sm.add_argument("-o", "--out", help="directory to copy the CSV files into (created if its parent exists)")
     sm.set_defaults(func=cmd_samples)
 
     b = sub.add_parser("bench", help="measure simulator (and fit) speed")

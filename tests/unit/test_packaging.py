@@ -61,3 +61,16 @@ def test_the_checkout_imports_its_parts_without_an_install():
             "import leuven_friction.identify.fit as f, leuven_friction.app.cli as c; print(f.__file__); print(c.__file__)")
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True).stdout
     assert [Path(p) for p in out.split()] == [ROOT / "identify" / "fit.py", ROOT / "app" / "cli.py"], out
+
+
+def test_every_output_flag_has_its_short_form(tmp_path):
+    # `-o` is what a user types first; it is the same flag as `--out` on every command that writes
+    from leuven_friction.app.cli import build_parser, main
+
+    ap = build_parser()
+    for argv in (["simulate", "-o", "a.csv"], ["fit", "x.csv", "-o", "a.yaml"], ["diagnose", "x.csv", "--params", "p.yaml",
+                                                                                   "-o", "a.yaml"], ["samples", "-o", "d"]):
+        assert ap.parse_args(argv).out == argv[argv.index("-o") + 1], argv
+    assert main(["samples", "-o", str(tmp_path / "copied")]) == 0
+    shipped = sorted(p.name for p in (ROOT / "sample_data").glob("*.csv"))
+    assert shipped and sorted(p.name for p in (tmp_path / "copied").glob("*.csv")) == shipped
