@@ -151,6 +151,7 @@ def cmd_simulate(args) -> int:
                          only=need + ("normal_load",))
     stages.verbose = len(rec) >= _BIG_RECORDING
     stages.done(f"read {len(rec)} rows from {args.input}")
+    say_reading(rec)
     if not args.params:
         print(default_params_warning(params.units, rec.units), file=sys.stderr)
     elif (warning := units_mismatch(args.params, params, rec)):
@@ -184,6 +185,12 @@ def cmd_simulate(args) -> int:
     stages.done(f"wrote {args.out}")
     print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}{_units_said(params, rec)}")
     return 0
+
+
+def say_reading(rec) -> None:
+    """How a recording was read (units converted, columns ignored, rows left out), on stderr."""
+    for note in rec.notes:
+        print(f"{rec.source}: {note}", file=sys.stderr)
 
 
 def default_params_warning(param_units: dict, rec_units: dict) -> str:
@@ -278,6 +285,7 @@ def cmd_diagnose(args) -> int:
     cols = parse_column_mapping(args.columns)
     rec = load_recording(_recording(args.data), columns=cols, units=parse_unit_mapping(args.units),
                          require=("time", "position"))
+    say_reading(rec)
     say_if_compiling()
     if args.params:
         params = _params(args.params, None)
@@ -355,8 +363,7 @@ def cmd_fit(args) -> int:
     from ..identify.segment import check_force_or_friction
 
     for r in recs:
-        for note in r.notes:
-            print(f"{r.source}: {note}", file=sys.stderr)
+        say_reading(r)
         if base is not None and (warning := units_mismatch(args.params, base, r)):
             print(warning, file=sys.stderr)
     for r in recs:

@@ -269,6 +269,10 @@ def recognise(key: str, unit: str | None = None) -> list:
 
 
 MIN_SAMPLES = 10
+# rows with an empty cell in a signal read (a logger's dropped sample) are left out, with a
+# note, up to this share of the rows; more is no dropout but a column that does not hold that
+# signal, and is refused
+EMPTY_ROWS_DROPPED = 0.01
 
 
 @dataclass
@@ -697,6 +701,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             df.attrs.update(attrs)
     rec = Recording(time=np.empty(0), source=str(path))
     unitless = []  # signals whose header gives no unit: SI assumed (``_assume_si``)
+    emptied = {}  # column: its rows whose cell is empty (``EMPTY_ROWS_DROPPED``)
     for sig, col in mapping.items():
         if only is not None and sig not in only and sig not in require:
             # its values are not read (a gap there is no error), its unit is still the file's
@@ -721,6 +726,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 notes.append(f"{col}: every cell empty: not read")
                 continue
             notes.append(f"{col}: {len(bad)} of {len(values)} rows empty (a slower logger): only its readings are used")
+        elif len(bad) and all(_empty(c) for c in raw.iloc[bad]):
+            emptied[col] = bad  # dropped with the other columns' below, or refused there
         elif len(bad):
             r = int(bad[0])
             cell = raw.iloc[r]
@@ -807,6 +814,26 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     if encoding != "utf-8-sig":
         notes.append("not UTF-8: read as Windows-1252")
     rec.notes = notes
+
+    if emptied:
+        gap = np.zeros(len(rec.time), bool)
+        for idx in emptied.values():
+            gap[idx] = True
+        col, idx = next(iter(emptied.items()))
+        if gap.sum() > EMPTY_ROWS_DROPPED * len(gap):
+            raise DataError(f"{path}: column {col!r} row {row_of(int(idx[0]))}: is empty or NaN"
+                            + (f" ({len(idx)} such rows)" if len(idx) > 1 else "")
+                            + f": {int(gap.sum())} of {len(gap)} rows have an empty cell in a signal read, over the "
+                            f"{EMPTY_ROWS_DROPPED:.0%} left out as a logger's dropouts: is that the column of this "
+                            f"signal? (--columns names another)")
+        keep = ~gap
+        said = "; ".join(f"{c!r} in {len(i)}, the first at row {row_of(int(i[0]))}" for c, i in emptied.items())
+        for sig in SIGNALS:
+            if getattr(rec, sig) is not None:
+                setattr(rec, sig, getattr(rec, sig)[keep])
+        rows = rows[keep]
+        notes.append(f"{int(gap.sum())} row(s) with an empty cell left out ({said}): a logger's dropouts, under "
+                     f"{EMPTY_ROWS_DROPPED:.0%} of the rows; the time they leave is a gap in the record")
 
     # a row that repeats the one before it in every value read (a logger that wrote a sample
     # twice) is no second sample: dropped, and counted; a repeated time with other values is

@@ -108,8 +108,9 @@ def test_cli_simulate_input_uses_recorded_position(tmp_path, capsys):
 
 
 def test_cli_simulate_reads_only_the_columns_its_drive_uses(tmp_path, capsys):
-    # a logged friction with a gap does not stop a simulation driven by the position; a gap in
-    # the position does, in one line naming the column and the row
+    # a logged friction with a gap does not stop a simulation driven by the position; a dropout
+    # in the position leaves its row out, said; a position that is mostly gaps stops it, in one
+    # line naming the column and the row
     t = np.arange(0, 1, 1e-3)
     friction = np.ones(len(t))
     friction[100] = np.nan
@@ -123,8 +124,14 @@ def test_cli_simulate_reads_only_the_columns_its_drive_uses(tmp_path, capsys):
     position[7] = np.nan
     pd.DataFrame({"time [s]": t, "position [rad]": position}).to_csv(rec, index=False)
     out.unlink()
+    rc, said, err = cli(capsys, "simulate", "--input", rec, "--drive", "displacement", "--out", out)
+    assert rc == 0, err
+    assert len(pd.read_csv(out)) == len(t) - 1 and "('position [rad]' in 1, the first at row 9)" in said + err
+    position[::10] = np.nan
+    pd.DataFrame({"time [s]": t, "position [rad]": position}).to_csv(rec, index=False)
+    out.unlink()
     rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "displacement", "--out", out)
-    assert rc != 0 and "'position [rad]' row 9" in err and len(err.strip().splitlines()) == 1, err
+    assert rc != 0 and "'position [rad]' row 2" in err and len(err.strip().splitlines()) == 1, err
     assert not out.exists()
 
 

@@ -538,10 +538,14 @@ def test_a_temperature_logged_slower_leaves_its_rows_between_readings_empty(tmp_
     assert np.isfinite(rec.temperature).sum() == 4
     np.testing.assert_allclose(rec.temperature[::100], [20.0, 21.0, 22.0, 23.0])
     assert "temperature [degC]: 396 of 400 rows empty (a slower logger): only its readings are used" in rec.notes
-    # the position is not let off the same way
+    # the position is not let off the same way: a row without one is no sample, left out with
+    # every other signal's cell in it (a logger's dropout), and said
     path.write_text("time [s],position [m],force [N],temperature [degC]\n" + rows.replace(",0.002,", ",,", 1))
-    with pytest.raises(DataError, match=r"column 'position \[m\]' row 4: is empty or NaN"):
-        load_recording(path)
+    rec = load_recording(path)
+    assert len(rec.time) == 399 and 0.02 not in rec.time and np.all(np.diff(rec.time) > 0)
+    np.testing.assert_allclose(rec.position, rec.time / 10.0)  # every row's own position, none shifted
+    assert any("1 row(s) with an empty cell left out ('position [m]' in 1, the first at row 4)" in n
+               for n in rec.notes), rec.notes
     path.write_text("time [s],position [m],force [N],temperature [degC]\n" + rows.replace(",20.0\n", ",warm\n", 1))
     with pytest.raises(DataError, match=r"column 'temperature \[degC\]' row 2: 'warm' is not a finite number"):
         load_recording(path)
@@ -652,3 +656,23 @@ def test_a_carriage_column_is_the_position():
     rec = load_recording(text, name="axis.csv")
     assert rec.columns["position"] == "carriage [mm]"
     assert np.allclose(rec.position, [i * 1e-5 for i in range(20)], rtol=1e-12)
+
+
+def test_a_few_empty_cells_are_dropouts_left_out_and_many_are_a_column_refused(tmp_path):
+    # 1 kHz of a force ramp: 5 rows (0.5 %) with an empty force cell are a logger's dropouts, the
+    # rows left out, the others kept as written; 40 (4 %) are no dropouts: refused, naming the
+    # column, its first empty row (the file's line) and what to check, and nothing is read
+    t = np.arange(1000) * 1e-3
+    lines = [f"{ti:.3f},{1e-4 * ti:.8f},{10.0 * ti:.4f}" for ti in t]
+    few = [ln if i not in (100, 101, 102, 500, 900) else ln.rsplit(",", 1)[0] + "," for i, ln in enumerate(lines)]
+    path = tmp_path / "dropouts.csv"
+    path.write_text("time [s],position [m],force [N]\n" + "\n".join(few) + "\n")
+    rec = load_recording(path)
+    assert len(rec.time) == 995
+    np.testing.assert_allclose(rec.force, 10.0 * rec.time, atol=1e-4)
+    assert any("5 row(s) with an empty cell left out ('force [N]' in 5, the first at row 102)" in n for n in rec.notes)
+    many = [ln if i % 25 else ln.rsplit(",", 1)[0] + "," for i, ln in enumerate(lines)]
+    path.write_text("time [s],position [m],force [N]\n" + "\n".join(many) + "\n")
+    with pytest.raises(DataError, match=r"dropouts.csv: column 'force \[N\]' row 2: is empty or NaN \(40 such rows\): "
+                                        r"40 of 1000 rows .* over the 1% left out"):
+        load_recording(path)
