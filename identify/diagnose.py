@@ -1600,12 +1600,22 @@ class Engine:
         self.follow = follow
 
     def loss(self) -> dict:
-        """Least-squares loss: plain in friction; in position, soft-L1 beyond a few noise
-        floors, because one window where the open-loop plant runs off (stick-slip on the
-        falling Stribeck branch) would otherwise outweigh all the others."""
+        """Least-squares loss on residuals in noise floors (``unit``): plain in friction; in
+        position, soft-L1 beyond a few noise floors, because one window where the open-loop
+        plant runs off (stick-slip on the falling Stribeck branch) would otherwise outweigh all
+        the others."""
         if self.c.space == "friction":
             return {}
-        return {"loss": "soft_l1", "f_scale": 3.0 * self.c.noise}
+        return {"loss": "soft_l1", "f_scale": 3.0 * self.c.noise / self.unit}
+
+    @property
+    def unit(self) -> float:
+        """What the least squares' residuals are divided by: the noise floor. Their optimum is
+        the same in any unit, but the gradient test that ends a least-squares run is absolute
+        (scipy's gtol, 10⁻⁸): a galvanometer axis made apart, its friction 2·10⁻⁵ N·m, had every
+        fold's refit stop before its first step, and its softening written with σ = 0."""
+        noise = float(self.c.noise)
+        return noise if math.isfinite(noise) and noise > 0.0 else 1.0
 
     def score(self, r: np.ndarray) -> float:
         """The loss summed over residuals ``r`` (what cross-validation compares)."""
@@ -1862,7 +1872,7 @@ class StiffnessChord:
                 if j in self.columns:
                     gj, kj, ej = _unpack(uj, terms, fit_k0, k0)
                     fs, _ = engine.scales(gj, kj, ej)
-                    rj = engine.residual_at(engine.c.filtered(fs * (sim + h * C[:, js.index(j)])), idx)
+                    rj = engine.residual_at(engine.c.filtered(fs * (sim + h * C[:, js.index(j)])), idx) / engine.unit
                 else:
                     rj = resid(uj)
                 J[:, j] = (rj - r0) / h
@@ -1881,10 +1891,10 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
     if engine.c.space == "position":
         max_nfev = min(max_nfev, 12)  # every evaluation simulates the whole recording
 
-    def resid(u):
+    def resid(u):  # in noise floors (``Engine.unit``)
         g, kk, entries = _unpack(u, terms, fit_k0, k0)
         m = engine.predict(g, kk, entries)
-        return engine.residual_at(m, idx)
+        return engine.residual_at(m, idx) / engine.unit
 
     jac = "2-point" if chord is None else chord.jacobian(engine, terms, fit_k0, k0, idx, resid)
     sol = least_squares(resid, u0, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=DIFF_STEP,
@@ -1909,6 +1919,32 @@ SIGMA1_REFIT_MAX = 100.0  # σ1 refits within this factor of the file's
 N_REFIT = (1.0, 40.0)  # n of eq. (5) refits within this range (at 40 the transition is all but a corner)
 INERTIA_ABSENT = 0.05  # friction following the acceleration as if I were under this share of the I it was taken with
 BASE_OFF_NOISE = 2.0  # with nothing named, the base is said to be off only if it leaves over this many noise floors
+
+
+def inertia_beside_notes(inertia: float, d_i: float, acc_sd: float, noise: float) -> list:
+    """What the inertia refitted beside the model alone says (``model_nuisance``'s ``d_i``
+    added to the ``inertia`` the friction was taken with): the value, and where it is no
+    positive inertia, or under INERTIA_ABSENT of it, what that may mean — unless the inertial
+    term itself, I·ẍ with ẍ's sd ``acc_sd``, spans under the noise floor: then the refitted I
+    is whatever the misfit asks and says nothing of the machine's (a rudder stock made apart,
+    2·10⁴ kg·m² at 10⁻³ rad/s², read "as if I were −7070" and was told to give the inertia
+    it had been given)."""
+    span = inertia * acc_sd
+    unread = span < noise
+    notes = [f"the gaps of the model as given and written are of friction taken from the applied force with the "
+             f"inertia refitted beside it: the recording's friction follows the acceleration as if I were "
+             f"{inertia + d_i:.4g}, against the {inertia:.4g} it was taken with (not written: a misfit of the model "
+             f"that follows the acceleration enters it too)"
+             + (f"; the inertial term I·ẍ spans {span:.3g} (its sd here), under the noise floor {noise:.3g}: the "
+                f"record does not read the inertia, and that value says nothing of it" if unread else "")]
+    if inertia + d_i < INERTIA_ABSENT * inertia and not unread:
+        # a measured friction logged under a force's name (``torque``) carries no I·ẍ at all
+        what = ("no positive inertia at all" if inertia + d_i <= 0 else
+                f"under {INERTIA_ABSENT:.0%} of the inertia the friction was taken with")
+        notes.append(f"that is {what}: the column read as the applied force shows almost no inertial term (or a "
+                     f"misfit of the model follows the acceleration): {NAME_IT_FRICTION}; if it is the applied "
+                     f"force, give this machine's inertia (--params)")
+    return notes
 
 
 def base_off_verdict(rms_base_refit: float, noise: float, candidates, seen: bool = False) -> str:
@@ -2127,11 +2163,11 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
 
     idx = _thinned(mask)
 
-    def resid(u):
+    def resid(u):  # in noise floors (``Engine.unit``)
         g, kk, p, entries = unpack(u)
         engine.set_base(p)
         m = engine.predict(g, kk, entries)
-        return engine.residual_at(m, idx)
+        return engine.residual_at(m, idx) / engine.unit
 
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)
@@ -4159,17 +4195,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # that an inertia off in the file is not a friction misfit; it is not written: on a
         # servo-driven stage a misfit of the model that follows the acceleration enters it as well
         d_i = model_nuisance(meas - final.model, allm, cmp_.memory_offset, cmp_.acceleration).d_inertia
-        cmp_.notes.append(f"the gaps of the model as given and written are of friction taken from the applied force with the "
-                          f"inertia refitted beside it: the recording's friction follows the acceleration as if I "
-                          f"were {cmp_.inertia + d_i:.4g}, against the {cmp_.inertia:.4g} it was taken with (not "
-                          f"written: a misfit of the model that follows the acceleration enters it too)")
-        if cmp_.inertia + d_i < INERTIA_ABSENT * cmp_.inertia:
-            # a measured friction logged under a force's name (``torque``) carries no I·ẍ at all
-            what = ("no positive inertia at all" if cmp_.inertia + d_i <= 0 else
-                    f"under {INERTIA_ABSENT:.0%} of the inertia the friction was taken with")
-            cmp_.notes.append(f"that is {what}: the column read as the applied force shows almost no inertial term "
-                              f"(or a misfit of the model follows the acceleration): {NAME_IT_FRICTION}; if it is the "
-                              f"applied force, give this machine's inertia (--params)")
+        cmp_.notes.extend(inertia_beside_notes(cmp_.inertia, d_i, float(np.std(cmp_.acceleration[allm])), cmp_.noise))
     regimes = {}
     # what the file written predicts: nothing named, it is the model as given (the base refitted
     # alone is a step of the report, not the file: the diagnosis adds effects, `fit` makes bases)

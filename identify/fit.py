@@ -252,8 +252,7 @@ def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "au
         if beyond.any():
             added = more.kept(beyond, opposing=0, creep=0, trend_alone=0)
             levels = Levels.joined([levels, added])
-            taken.append(f"{int(beyond.sum())} at a window of {w} (|v| "
-                         f"{', '.join(f'{v:.3g}' for v in np.sort(np.abs(added.velocity)))})")
+            taken.append((int(beyond.sum()), f"at a window of {w} (|v| {speeds_said(added.velocity)})"))
         left = fast_runs(narrow, levels, cut_short=False)
     said = (f"{len(found)} steady run(s) faster than every level of their side lasted under min_run = "
             f"{prep.th.min_run} samples (two windows of {prep.th.window}; the longest {max(n for _, n in found)})")
@@ -261,8 +260,17 @@ def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "au
         return levels, said + " and no window down to 5 samples made levels of them"
     lost = (f"; {len(left)} faster run(s) (up to |v| {max(left)[0]:.3g}) are not levels even at a window of {tried}"
             if left else "")
-    return levels, (f"{said}: level(s) taken from them, {'; '.join(taken)}, the others at {prep.th.window}{lost}; "
+    # (a run held long at a narrow window makes several levels: they are counted as levels)
+    return levels, (f"{said}: {sum(k for k, _ in taken)} level(s) taken from them, "
+                    f"{'; '.join(f'{k} {at}' for k, at in taken)}, the others at {prep.th.window}{lost}; "
                     f"set --threshold window to choose one for all")
+
+
+def speeds_said(velocity) -> str:
+    """Speeds as read, rising, a repeated one counted: "0.008 ×6, 0.012 ×4, 0.02"."""
+    said = [f"{v:.3g}" for v in np.sort(np.abs(np.asarray(velocity, dtype=np.float64)))]
+    seen = list(dict.fromkeys(said))
+    return ", ".join(v + (f" ×{said.count(v)}" if said.count(v) > 1 else "") for v in seen)
 
 
 NARROWER = 2.0 / 3.0  # each window tried for a sweep's fastest runs is this fraction of the one before

@@ -330,8 +330,11 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
         else:
             # the v_s the count is against (the Stribeck fit's, which lies below every level when
             # the levels show no dip the curve can follow, e.g. friction that drifted between them)
-            why = (f"only {below} level(s) below the Stribeck velocity v_s = {abs(fit.values['vs']):.3g} the Stribeck "
-                   f"fit put (levels from {np.min(a):.3g})" if below < 2
+            vs_fit = abs(fit.values['vs'])
+            why = ((f"the Stribeck fit put v_s = {vs_fit:.3g} below every level (the slowest at {np.min(a):.3g}): no "
+                    f"level shows the drop from F_s to F_c; levels slower than v_s would" if below == 0 else
+                    f"only {below} level below the Stribeck velocity v_s = {vs_fit:.3g} the Stribeck fit put (levels "
+                    f"from {np.min(a):.3g}): one point does not show the drop from F_s to F_c") if below < 2
                    else f"the Stribeck fit of these levels left {', '.join(bad)} undetermined (σ > half the value, a bound "
                         f"or a negative variance), so Coulomb + viscous is fitted instead")
     else:

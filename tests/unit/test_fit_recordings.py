@@ -874,6 +874,19 @@ def test_a_sweeps_brief_fastest_speeds_are_taken_at_shorter_windows():
         err = np.abs(after.friction[top] - S(after.velocity[top])) / np.sqrt(after.variance[top])
         assert np.all(err < 4.0), (v_top, after.friction[top], err)
     assert f"the others at {prep.th.window}" in said and said.count("at a window of") == 2, said
+    # the levels said are the levels added, counted as levels (a run can make several), each
+    # speed once with its count
+    import re
+
+    added = len(after.velocity) - len(before.velocity)
+    assert f": {added} level(s) taken from them, " in said, said
+    assert sum(int(k) for k in re.findall(r"(\d+) at a window of", said)) == added, said
+
+
+def test_speeds_are_said_once_each_with_their_count():
+    from leuven_friction.identify.fit import speeds_said
+
+    assert speeds_said([0.02, -0.008, 0.008, 0.012, -0.012, 0.008]) == "0.008 ×3, 0.012 ×2, 0.02"
 
 
 def test_the_report_shows_each_level_beside_the_curve_written(tmp_path):

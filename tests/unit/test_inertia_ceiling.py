@@ -66,3 +66,18 @@ def test_fit_holds_an_unread_inertia_at_the_ceiling_not_at_another_machines_defa
     assert res.params.inertia >= 0.2
     assert "inertia" not in res.params.uncertainty  # held, not estimated
     assert "upper bound" in res.held["inertia"] and "held at that ceiling" in res.held["inertia"]
+
+
+def test_an_inertia_refitted_beside_the_model_is_read_only_where_its_term_stands_over_the_noise():
+    # I·ẍ at 2·10⁴ kg·m² × 10⁻³ rad/s² spans 20 N·m under a 536 N·m noise floor: the refitted
+    # "−7070" is what the misfit asks, said so, with no advice to give the inertia; the same
+    # reading where I·ẍ spans 50 against a floor of 1 is a column with no inertial term
+    from leuven_friction.identify.diagnose import inertia_beside_notes
+
+    quiet = inertia_beside_notes(2e4, -2.707e4, 1e-3, 536.0)
+    assert len(quiet) == 1 and "as if I were -7070" in quiet[0]
+    assert "spans 20 (its sd here), under the noise floor 536: the record does not read the inertia" in quiet[0]
+    loud = inertia_beside_notes(5.0, -6.0, 10.0, 1.0)
+    assert len(loud) == 2 and "does not read" not in loud[0]
+    assert loud[1].startswith("that is no positive inertia at all") and "give this machine's inertia" in loud[1]
+    assert len(inertia_beside_notes(5.0, -1.0, 10.0, 1.0)) == 1  # 4 of 5: an inertia, read
