@@ -831,7 +831,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         for sig in SIGNALS:
             if getattr(rec, sig) is not None:
                 setattr(rec, sig, getattr(rec, sig)[keep])
-        rows = rows[keep]
+        rows, df = rows[keep], _rows_kept(df, keep)
         notes.append(f"{int(gap.sum())} row(s) with an empty cell left out ({said}): a logger's dropouts, under "
                      f"{EMPTY_ROWS_DROPPED:.0%} of the rows; the time they leave is a gap in the record")
 
@@ -848,7 +848,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         first = row_of(int(np.flatnonzero(again)[0]) + 1)
         for sig in read:
             setattr(rec, sig, getattr(rec, sig)[keep])
-        rows = rows[keep]
+        rows, df = rows[keep], _rows_kept(df, keep)
         notes.append(f"{int(again.sum())} row(s) repeating the row before in every value (first at row {first}): "
                      f"dropped")
     n = len(rec.time)
@@ -881,6 +881,15 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             notes.append(f"{rec.columns['position']}: the angle wraps at one turn ({len(wraps)} time(s), first at row "
                          f"{row_of(int(wraps[0]) + 1)}): unwrapped to a continuous angle")
     return rec
+
+
+def _rows_kept(df, keep: np.ndarray):
+    """The table's rows where ``keep``, renumbered as the recording's samples are (a message
+    quoting the file's own cell of a sample reads it there)."""
+    attrs = dict(df.attrs)
+    out = df.iloc[np.flatnonzero(keep)].reset_index(drop=True)
+    out.attrs.update(attrs)
+    return out
 
 
 def integrated_speed(t: np.ndarray, v: np.ndarray) -> np.ndarray:

@@ -671,6 +671,12 @@ def test_a_few_empty_cells_are_dropouts_left_out_and_many_are_a_column_refused(t
     assert len(rec.time) == 995
     np.testing.assert_allclose(rec.force, 10.0 * rec.time, atol=1e-4)
     assert any("5 row(s) with an empty cell left out ('force [N]' in 5, the first at row 102)" in n for n in rec.notes)
+    # a clock going back after a dropout is quoted from its own line's cells
+    back = list(few)
+    back[700] = "0.650," + back[700].split(",", 1)[1]
+    path.write_text("time [s],position [m],force [N]\n" + "\n".join(back) + "\n")
+    with pytest.raises(DataError, match=r"row 702: time 0.65 does not increase \(previous 0.699\)"):
+        load_recording(path)
     many = [ln if i % 25 else ln.rsplit(",", 1)[0] + "," for i, ln in enumerate(lines)]
     path.write_text("time [s],position [m],force [N]\n" + "\n".join(many) + "\n")
     with pytest.raises(DataError, match=r"dropouts.csv: column 'force \[N\]' row 2: is empty or NaN \(40 such rows\): "
