@@ -35,6 +35,19 @@ import numpy as np
 def stribeck(v, Fc, Fs, vs, delta=2.0):
     return Fc + (Fs - Fc) * math.exp(-abs(v / vs) ** delta)
 
+def maxwell_slip(z, k, w, s, v, dt):
+    """The elements' forces after a step (each elastic, k·v·dt, until it slips at its share w of
+    the Stribeck limit s), updated in place; their sum."""
+    f = 0.0
+    for j in range(len(z)):
+        zj = z[j] + k[j] * v * dt
+        lim = w[j] * s
+        if zj > lim: zj = lim
+        elif zj < -lim: zj = -lim
+        z[j] = zj
+        f += zj
+    return f
+
 # ------------------------------------------------------------------ galvo
 def galvo(effect, seed=1):
     rng = np.random.default_rng(seed)
@@ -75,11 +88,11 @@ def galvo(effect, seed=1):
         ti = t[i]
         # controller / drive at sample rate (zero-order hold)
         if ti < 0.2:
-            u = 0.0; mode = 0
+            u = 0.0
         elif ti < wt[-1]:
-            u = float(np.interp(ti, wt, wp)); mode = 0
+            u = float(np.interp(ti, wt, wp))
         elif ti < 2.5:
-            u = 0.0; mode = 0
+            u = 0.0
         elif ti < t_lv_end:
             # find level
             while levels[lv_i][1] <= ti:
@@ -92,22 +105,13 @@ def galvo(effect, seed=1):
             e = vref - v
             integ += Ki * e / fs_rate
             u = Kp * e + integ
-            mode = 1
         elif ti < 8.95:
-            u = 0.0; integ = 0.0; mode = 0
+            u = 0.0; integ = 0.0
         else:
-            u = 1.4 * Fs * math.sin(2 * math.pi * 3.0 * (ti - 8.95)); mode = 0
+            u = 1.4 * Fs * math.sin(2 * math.pi * 3.0 * (ti - 8.95))
         X[i] = x; V[i] = v; U[i] = u
         for _ in range(sub):
-            s = stribeck(v, Fc, Fs, vs)
-            f = 0.0
-            for j in range(4):
-                zj = z[j] + k[j] * v * dt
-                lim = w[j] * s
-                if zj > lim: zj = lim
-                elif zj < -lim: zj = -lim
-                z[j] = zj
-                f += zj
+            f = maxwell_slip(z, k, w, stribeck(v, Fc, Fs, vs), v, dt)
             f += s2 * v + s1 * math.exp(-(v / v_damp) ** 2) * v
             if effect:
                 f *= 1.0 + a_rip * math.sin(2 * math.pi * x / lam)
@@ -176,7 +180,7 @@ def rudder(effect, seed=2):
         tt += dur
     # velocity PI (acts on actuator flow, i.e. actuator velocity command)
     Kp, Ki = 5.0, 20.0
-    x = 0.0; v = 0.0; xa = 0.0; z = [0.0] * 4; integ = 0.0; xref = 0.0
+    x = 0.0; v = 0.0; xa = 0.0; z = [0.0] * 4; xref = 0.0
     X = np.empty(n); TQ = np.empty(n); FR = np.empty(n); V = np.empty(n)
     tq = 0.0; f = 0.0
     for i in range(n):
@@ -191,15 +195,7 @@ def rudder(effect, seed=2):
             va = ua
             xa += va * dt
             tq = Kh * (xa - x) + ch * (va - v)
-            s = stribeck(v, Fc, Fs, vs)
-            f = 0.0
-            for j in range(4):
-                zj = z[j] + k[j] * v * dt
-                lim = w[j] * s
-                if zj > lim: zj = lim
-                elif zj < -lim: zj = -lim
-                z[j] = zj
-                f += zj
+            f = maxwell_slip(z, k, w, stribeck(v, Fc, Fs, vs), v, dt)
             f += s2 * v + s1 * math.exp(-(v / v_damp) ** 2) * v
             f *= g
             v += (tq - f) / J * dt
