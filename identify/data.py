@@ -560,9 +560,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     if row_units is not None:
         rows = rows[rows > 0]
     if len(rows) < len(df):
-        attrs = dict(df.attrs)
-        df = df.iloc[rows].reset_index(drop=True)
-        df.attrs.update(attrs)
+        df = _rows_kept(df, rows)
 
     def row_of(index: int) -> int:
         """The row a message names: the file's line (comments and blank lines counted, as an
@@ -696,9 +694,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             # last cell may be cut as well, so the whole line goes
             notes.append(f"the last row (line {row_of(len(df) - 1)}) has no {', '.join(map(repr, cut))}, as a file cut "
                          f"short while it was written ends: left out")
-            attrs = dict(df.attrs)
-            df = df.iloc[:-1]
-            df.attrs.update(attrs)
+            df = _rows_kept(df, np.arange(len(df) - 1))
     rec = Recording(time=np.empty(0), source=str(path))
     unitless = []  # signals whose header gives no unit: SI assumed (``_assume_si``)
     emptied = {}  # column: its rows whose cell is empty (``EMPTY_ROWS_DROPPED``)
@@ -831,7 +827,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         for sig in SIGNALS:
             if getattr(rec, sig) is not None:
                 setattr(rec, sig, getattr(rec, sig)[keep])
-        rows, df = rows[keep], _rows_kept(df, keep)
+        rows, df = rows[keep], _rows_kept(df, np.flatnonzero(keep))
         notes.append(f"{int(gap.sum())} row(s) with an empty cell left out ({said}): a logger's dropouts, under "
                      f"{EMPTY_ROWS_DROPPED:.0%} of the rows; the time they leave is a gap in the record")
 
@@ -848,7 +844,7 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         first = row_of(int(np.flatnonzero(again)[0]) + 1)
         for sig in read:
             setattr(rec, sig, getattr(rec, sig)[keep])
-        rows, df = rows[keep], _rows_kept(df, keep)
+        rows, df = rows[keep], _rows_kept(df, np.flatnonzero(keep))
         notes.append(f"{int(again.sum())} row(s) repeating the row before in every value (first at row {first}): "
                      f"dropped")
     n = len(rec.time)
@@ -883,11 +879,12 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
     return rec
 
 
-def _rows_kept(df, keep: np.ndarray):
-    """The table's rows where ``keep``, renumbered as the recording's samples are (a message
-    quoting the file's own cell of a sample reads it there)."""
+def _rows_kept(df, index: np.ndarray):
+    """The table's rows at ``index``, renumbered as the recording's samples are (a message
+    quoting the file's own cell of a sample reads it there), its attributes (the file's
+    dialect, its columns) kept."""
     attrs = dict(df.attrs)
-    out = df.iloc[np.flatnonzero(keep)].reset_index(drop=True)
+    out = df.iloc[index].reset_index(drop=True)
     out.attrs.update(attrs)
     return out
 

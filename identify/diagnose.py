@@ -1640,17 +1640,18 @@ class Engine:
     def residual_at(self, model: np.ndarray, idx: np.ndarray) -> np.ndarray:
         """The residual of the prediction ``model`` beside the engine's nuisance (``nuisance``)
         fitted on the samples ``idx`` (a least-squares step's thinned set: ~20 coefficients
-        need no more), at those samples."""
+        need no more), at those samples, in noise floors (``unit``): what every least squares
+        of the diagnosis minimises."""
         meas = self.c.measured
         if self.free is not None:
-            return self.free.residual_at(meas, model, idx)
+            return self.free.residual_at(meas, model, idx) / self.unit
         r = meas[idx] - model[idx]
         off = self.c.memory_offset
         acc = self.c.acceleration if self.free_inertia else None
-        if off is None and acc is None:
-            return r
-        return r - model_nuisance(r, np.ones(len(idx), bool), None if off is None else off[idx],
-                                  None if acc is None else acc[idx]).correction
+        if off is not None or acc is not None:
+            r = r - model_nuisance(r, np.ones(len(idx), bool), None if off is None else off[idx],
+                                   None if acc is None else acc[idx]).correction
+        return r / self.unit
 
     def set_base(self, params: FrictionParams) -> None:
         self.p = params.replace(effects=())
@@ -1872,7 +1873,7 @@ class StiffnessChord:
                 if j in self.columns:
                     gj, kj, ej = _unpack(uj, terms, fit_k0, k0)
                     fs, _ = engine.scales(gj, kj, ej)
-                    rj = engine.residual_at(engine.c.filtered(fs * (sim + h * C[:, js.index(j)])), idx) / engine.unit
+                    rj = engine.residual_at(engine.c.filtered(fs * (sim + h * C[:, js.index(j)])), idx)
                 else:
                     rj = resid(uj)
                 J[:, j] = (rj - r0) / h
@@ -1891,10 +1892,10 @@ def _fit(engine: Engine, terms: list, u0: np.ndarray, mask: np.ndarray, *, fit_k
     if engine.c.space == "position":
         max_nfev = min(max_nfev, 12)  # every evaluation simulates the whole recording
 
-    def resid(u):  # in noise floors (``Engine.unit``)
+    def resid(u):
         g, kk, entries = _unpack(u, terms, fit_k0, k0)
         m = engine.predict(g, kk, entries)
-        return engine.residual_at(m, idx) / engine.unit
+        return engine.residual_at(m, idx)
 
     jac = "2-point" if chord is None else chord.jacobian(engine, terms, fit_k0, k0, idx, resid)
     sol = least_squares(resid, u0, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac", diff_step=DIFF_STEP,
@@ -2163,11 +2164,11 @@ def refit_transition(engine: Engine, params: FrictionParams, terms: list, prior_
 
     idx = _thinned(mask)
 
-    def resid(u):  # in noise floors (``Engine.unit``)
+    def resid(u):
         g, kk, p, entries = unpack(u)
         engine.set_base(p)
         m = engine.predict(g, kk, entries)
-        return engine.residual_at(m, idx) / engine.unit
+        return engine.residual_at(m, idx)
 
     # a refit, not a new identification: each S(v) value within a factor 1.5 of the fit's
     b = math.log(1.5)
