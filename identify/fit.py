@@ -870,8 +870,9 @@ CURVE_COVERS = 0.5  # a transition curve topping below this share of F_s⁺ − 
 def curve_coverage(p: FrictionParams, v_end: float) -> str:
     """A note where the fitted transition curve tops out below CURVE_COVERS of the outer loop's
     span F_s⁺ − F_s⁻ (the force F_d climbs towards over presliding: Table II's 100 N·m against
-    Table I's 36 + 63), or "": beyond its last knot the last segment's slope goes on, stiffer
-    than a curve bending into sliding. ``v_end``: the speed at which a branch was ended (0.3 ×
+    Table I's 36 + 63), or "": beyond its last knot the last segment's slope goes on (or the
+    slope that reaches the span at twice the last knot, ``model.params.reaching_knots``),
+    stiffer than a curve bending into sliding. ``v_end``: the speed at which a branch was ended (0.3 ×
     the slowest steady level), said because a position loop's presliding sines pass it — a
     joint made apart had its curve stop at 0.168 mrad and 8.5 N·m of a 32 N·m span, its
     sines reaching 4 mrad, and nothing said."""
@@ -884,7 +885,8 @@ def curve_coverage(p: FrictionParams, v_end: float) -> str:
             f"presliding moved faster (a position loop's sines) is not read as one" if math.isfinite(v_end) else "")
     return (f"transition curve: its knots reach F_d = {tc.F[-1]:.4g}{(' ' + unit) if unit else ''} at z = {tc.z[-1]:.3g}, "
             f"{tc.F[-1] / span:.0%} of F_s⁺ − F_s⁻ ({span:.4g}), towards which F_d climbs over presliding: beyond, its "
-            f"last segment's slope goes on, stiffer than a curve bending into sliding, so wider presliding is not "
+            f"last segment's slope goes on (or, if that reaches the span only past {2 * tc.z[-1]:.3g}, the slope that "
+            f"reaches it there), stiffer than a curve bending into sliding, so wider presliding is not "
             f"estimated{ends}")
 MISFIT_CHI2_RED = 4.0  # a refinement leaving its residuals twice the noise floor: its σ are said to be of a misfit
 

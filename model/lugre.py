@@ -20,7 +20,7 @@ from .kernels import transition_curve_array, transition_curve_inverse
 
 
 def lugre_sigma0_from_transition_curve(p, n_grid: int = 400) -> float:
-    kind, tz, tF = p.transition_curve.kernel_arrays()
+    kind, tz, tF = p.curve_arrays()
     fs_pos = p.stribeck.positive.Fs
     span = fs_pos - p.stribeck.negative.Fs
     x_end = transition_curve_inverse(kind, tz, tF, span)

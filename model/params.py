@@ -359,6 +359,27 @@ class TanhShape(_RecordMapping):
             _spec(f, f"{path}.{f.name}", PAPER_UNITS).check(getattr(self, f.name))
 
 
+def reaching_knots(z, F, reach: float) -> tuple[np.ndarray, np.ndarray]:
+    """The knots of a piecewise-linear F_d as the kernels evaluate it: the knots given, and,
+    where the last segment's slope carried on would reach ``reach`` (the outer loop's span
+    F_s⁺ − F_s⁻) only beyond twice the last knot, one more knot at (2·z_last, reach).
+
+    Why: eq. (5) settles in sliding where F_d(z) = S(v) − F_b, which after a reset is up to
+    that span. A curve topping below it with a nearly flat last segment (a fit whose branches
+    end where the contact starts to slide: a guideway made apart, F_d flat at 47.5 N for a span
+    of 58.3 N) puts that point metres away; z then runs on, and σ1·dz/dt reaches hundreds of
+    newtons in every fast stroke. Continued this way, every force difference the memory can
+    ask for is reached within presliding's own scale; a curve that gets there already (Table
+    II's 100 N·m for Table I's 36 + 63) is evaluated as given."""
+    z, F = np.asarray(z, dtype=np.float64), np.asarray(F, dtype=np.float64)
+    if len(z) < 2 or not reach > F[-1] or not z[-1] > z[-2]:
+        return z, F
+    slope = (F[-1] - F[-2]) / (z[-1] - z[-2])
+    if F[-1] + slope * z[-1] >= reach:
+        return z, F
+    return np.append(z, 2.0 * z[-1]), np.append(F, reach)
+
+
 @dataclass(frozen=True)
 class TransitionCurve:
     """The positive half of the point-symmetric, strictly increasing transition curve F_d(z).
@@ -429,11 +450,14 @@ class TransitionCurve:
             return float(self.F[1] / self.z[1])
         return float(self.shape.A / self.shape.z0 + self.shape.k)
 
-    def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray]:
-        """(kind code, abscissas, ordinates-or-shape) for ``model.kernels``."""
+    def kernel_arrays(self, reach: float = 0.0) -> tuple[int, np.ndarray, np.ndarray]:
+        """(kind code, abscissas, ordinates-or-shape) for ``model.kernels``; ``reach``: the
+        largest force difference the memory asks of F_d (``FrictionParams.outer_loop_span``),
+        which a piecewise-linear curve is made to reach by twice its last knot
+        (``reaching_knots``)."""
         if self.kind == "piecewise_linear":
-            return (int(CurveKind.PIECEWISE_LINEAR), np.asarray(self.z, dtype=np.float64),
-                    np.asarray(self.F, dtype=np.float64))
+            z, F = reaching_knots(self.z, self.F, reach)
+            return int(CurveKind.PIECEWISE_LINEAR), z, F
         s = self.shape
         return int(CurveKind.TANH_LINEAR), np.zeros(1), np.array([s.A, s.z0, s.k], dtype=np.float64)
 
@@ -486,6 +510,17 @@ class FrictionParams:
         object.__setattr__(self, "effects", freeze(tuple(self.effects or ())))
         object.__setattr__(self, "uncertainty", freeze(self.uncertainty or {}))
         object.__setattr__(self, "provenance", freeze(self.provenance or {}))
+
+    @property
+    def outer_loop_span(self) -> float:
+        """The largest S(v) − F_b the memory asks of F_d: from one side's largest |S(v)| (F_s,
+        or F_c where friction rises with speed) to the other's."""
+        pos, neg = self.stribeck.positive, self.stribeck.negative
+        return max(abs(pos.Fs), abs(pos.Fc)) + max(abs(neg.Fs), abs(neg.Fc))
+
+    def curve_arrays(self) -> tuple[int, np.ndarray, np.ndarray]:
+        """The transition curve's arrays for ``model.kernels``, reaching ``outer_loop_span``."""
+        return self.transition_curve.kernel_arrays(self.outer_loop_span)
 
     def validate(self) -> "FrictionParams":
         if self.model not in MODEL_KINDS:

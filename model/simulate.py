@@ -51,7 +51,7 @@ def pack(params: FrictionParams) -> tuple[int, np.ndarray, int, np.ndarray, np.n
     p[L.P_SIGMA0] = params.sigma0 or 0.0
     p[L.P_REVTOL] = params.reversal_tol
     p[L.P_INERTIA] = params.inertia
-    kind, tz, tF = params.transition_curve.kernel_arrays()
+    kind, tz, tF = params.curve_arrays()
     return int(L.ModelKind.parse(params.model)), p, kind, tz, tF
 
 
@@ -265,7 +265,7 @@ def stribeck_curve(params: FrictionParams, v) -> np.ndarray:
 
 def transition_curve_values(params: FrictionParams, z) -> np.ndarray:
     """F_d(z), vectorised."""
-    kind, tz, tF = params.transition_curve.kernel_arrays()
+    kind, tz, tF = params.curve_arrays()
     z = np.ascontiguousarray(np.atleast_1d(z), dtype=np.float64)
     out = np.empty_like(z)
     K.transition_curve_array(kind, tz, tF, z, out)

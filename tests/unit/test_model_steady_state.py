@@ -42,3 +42,32 @@ def test_sweep_reproduces_table_one_shape(kuka):
     assert F[pos][0] > F[pos][4] and F[pos][-1] > F[pos][5]
     neg = v < 0
     assert F[neg][0] < F[neg][4] and F[neg][-1] < F[neg][5]
+
+
+@pytest.mark.parametrize("v", [0.004, 0.3])
+def test_sliding_settles_when_the_curve_tops_short_of_the_outer_loop(kuka, v):
+    """A fitted F_d may end flat below F_s⁺ − F_s⁻ (branches stopping where the contact starts
+    to slide). Eq. (5) must still settle after a reversal from the other sliding direction:
+    F → S(v) + σ2·v within presliding's scale, and σ1·dz/dt never more than the forces at play."""
+    from leuven_friction.model.params import TransitionCurve
+
+    p = kuka.replace(transition_curve=TransitionCurve(kind="piecewise_linear", z=(0.0, 1e-4, 2e-4),
+                                                      F=(0.0, 60.0, 60.001)))
+    assert p.outer_loop_span > 90.0  # Table I: 36 + 63, well above the curve's top
+    # slide negative for 0.05 rad, then positive for 0.05 rad (250 curve lengths each way)
+    dt = 2e-5 / abs(v)
+    t = np.arange(0.0, 0.1 / abs(v), dt)
+    x = np.where(t < 0.05 / abs(v), -v * t, -0.05 + v * (t - 0.05 / abs(v)))
+    r = simulate_displacement(p, t, x)
+    S, sigma2 = paper_steady_state(v)
+    back = t > 0.05 / abs(v)
+    assert r.friction_force[-1] == pytest.approx(S + sigma2 * v, abs=1e-3)
+    # settled within ten curve lengths of the reversal (2e-3 rad): before the curve was made to
+    # reach the span, z ran on for metres there and σ1·dz/dt read −600 N on a guideway's fit
+    past = back & (x > -0.05 + 2e-3)
+    assert np.max(np.abs(r.friction_force[past] - (S + sigma2 * v))) < 1e-2 * abs(S)
+    # a curve that reaches the span (Table II's) is evaluated as given
+    from leuven_friction.model.params import reaching_knots
+
+    z, F = reaching_knots(kuka.transition_curve.z, kuka.transition_curve.F, kuka.outer_loop_span)
+    assert tuple(z) == tuple(kuka.transition_curve.z) and tuple(F) == tuple(kuka.transition_curve.F)
