@@ -135,6 +135,8 @@ def cmd_simulate(args) -> int:
         table = _table(res.runs, res.labels)
         _write_table(table, args.out)
         print(f"{args.experiment} ({params.model}): {len(table['time'])} rows -> {args.out}{_units_said(params)}")
+        if "drive" in res.summary:  # in the file's own scales (``model.experiments.force_scale``)
+            print(f"  {res.summary['drive']}")
         return 0
     if not args.input:
         raise UserError("simulate: give --experiment NAME, --input REC.csv or --list")

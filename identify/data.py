@@ -129,7 +129,8 @@ def unit_of(unit: str, sig: str) -> tuple[float, str] | None:
         return UNITS["nm_torque"]
     if key.replace(" ", "") in UNITS:
         return UNITS[key.replace(" ", "")]
-    scaled = _SCALED.match(key)
+    # a size written with a decimal comma ('5,9 N' in a European header) is the same size
+    scaled = _SCALED.match(re.sub(r"^(\d+),(\d+)", r"\1.\2", key))
     if scaled:
         # a unit with a size in front ('50 nm', '0.001 deg'): what one count of an encoder is
         size, base = float(scaled[1]), unit_of(scaled[2], sig)
@@ -406,7 +407,9 @@ def columns_option(sig: str, col: str, negated: bool = False) -> str:
 def _signal_pairs(spec: str, option: str, what: str) -> list[tuple[str, str]]:
     """The 'signal=value' pairs of an option's comma-separated ``spec``, each signal known."""
     out = []
-    for part in spec.split(","):
+    # a comma separates pairs only where a 'signal=' follows it: a decimal comma stays in its
+    # value ("force=5,9 N", a European torque constant; "force=Motorstrom [5,9 N]")
+    for part in re.split(r",(?=\s*[A-Za-z_]\w*\s*=)", spec):
         if "=" not in part:
             raise DataError(f"{option}: expected signal={what} pairs separated by commas, got {part!r}")
         k, v = (s.strip() for s in part.split("=", 1))
@@ -652,6 +655,17 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         cof = next((c for c, (key, _) in headers.items() if c not in mapping.values() and key in COF_NAMES), None)
         if cof is not None:
             mapping["friction"] = cof
+    given = [sig for sig in ("force", "friction") if sig in (units or {})]
+    if given and not {"friction", "force"} & set(mapping):
+        # a unit given for a force no column is read as (``--units "force=5.9 N"`` beside a
+        # 'motor_current [A]' column): the unit names no column, and the file's own message
+        # would repeat the advice to give it
+        sig = given[0]
+        currents = [c for c in in_file for _, unit in [_split_header(c)] if c not in mapping.values()
+                    and (is_current_unit(unit) or current_word(c) is not None)]
+        raise DataError(f"{path}: a unit is given for the {sig} ({units[sig]!r}), but no column is read as the {sig}: "
+                        + (f"name the column it is for, --columns {sig}={currents[0]!r}" if len(currents) == 1 else
+                           f"name the column it is for with --columns {sig}=<column> (columns: {_listing(in_file)})"))
     # a tribometer or a spindle that logs its speed and not its position: the position is the
     # speed integrated (below)
     missing = [s for s in require if s not in mapping and not (s == "position" and "velocity" in mapping)]

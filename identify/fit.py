@@ -754,7 +754,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         # a curve kept from another machine beside this fit's F_s (a valve's 539 N·m beside the
         # paper's curve topping at 100 N·m was written unsaid, which `diagnose` then warned of):
         # said as ``curve_coverage`` says a fitted curve that stops short
-        short = curve_coverage(p, math.inf)
+        short = curve_coverage(p.replace(units=_units_of(recordings)), math.inf)  # in the recordings' units
         under = (f"; {short.removeprefix('transition curve: ')} (presliding recorded — slow force ramps, or small "
                  f"reversals of a motion with measured friction — would set this machine's)" if short else "")
         held["transition_curve"] = f"{why_curve}: kept {start}{under}"
@@ -838,7 +838,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             res.refinement = {"done": False, "reason": "output-error refinement is not available in this version"}
     else:
         res.refinement = {"done": False, "reason": "skipped (--no-refine)"}
-    if tfit is not None and (said := curve_coverage(res.params, min(branch_ends, default=np.inf))):
+    # in the recordings' units (written into the parameters only below): a stage in m and N read "N*m"
+    if tfit is not None and (said := curve_coverage(res.params.replace(units=_units_of(recordings)),
+                                                    min(branch_ends, default=np.inf))):
         res.notes.append(said)  # of the curve written (the refinement moves its knots' F_d)
 
     cost = {}
@@ -881,7 +883,7 @@ def curve_coverage(p: FrictionParams, v_end: float) -> str:
     if tc.kind != "piecewise_linear" or not tc.F or not span > 0 or tc.F[-1] >= CURVE_COVERS * span:
         return ""
     unit = p.units.force
-    ends = (f"; a branch ends where its speed passes {v_end:.3g} (0.3 × the slowest steady level), and "
+    ends = (f"; a branch ends where its speed passes {v_end:.3g} {p.units.position}/s (0.3 × the slowest steady level), and "
             f"presliding moved faster (a position loop's sines) is not read as one" if math.isfinite(v_end) else "")
     return (f"transition curve: its knots reach F_d = {tc.F[-1]:.4g}{(' ' + unit) if unit else ''} at z = {tc.z[-1]:.3g}, "
             f"{tc.F[-1] / span:.0%} of F_s⁺ − F_s⁻ ({span:.4g}), towards which F_d climbs over presliding: beyond, its "

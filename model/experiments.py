@@ -13,7 +13,7 @@ from typing import Callable
 
 import numpy as np
 
-from .params import FrictionParams, Stribeck, StribeckSide, as_model, default_params
+from .params import FrictionParams, Stribeck, StribeckSide, as_model, default_params, kuka_stribeck
 from .simulate import SimResult, simulate_closed_loop, simulate_displacement, simulate_force
 
 DT = 1e-4  # the paper's simulation step (Section IV-B)
@@ -32,12 +32,41 @@ def _ramp(points_t, points_f, dt=DT):
     return t, np.interp(t, points_t, points_f)
 
 
-def symmetric_ramp(params: FrictionParams, amplitude: float = 25.0, rate: float = 5.0) -> ExperimentResult:
-    """Fig. 1: applied force ramped 0 → +a → -a → +a; a loop appears only for symmetric extremes."""
+def force_scale(params: FrictionParams) -> float:
+    """This parameter set's F_s⁺ over Table I's 36 N·m: the paper's applied-force levels are
+    fractions of its joint's break-away force, and a machine ten times weaker, driven by the
+    same newtons, slides off where the experiment means it to stay in presliding (a 14 N stage
+    ran 9.4 m through the A → B → C → D ramp). 1 for the paper's parameters."""
+    return abs(params.stribeck.positive.Fs) / abs(kuka_stribeck().positive.Fs)
+
+
+def abcd_levels(params: FrictionParams) -> tuple:
+    """Fig. 10's A → B → C → D force levels (0, 20, 5, 30 N·m for F_s⁺ = 36) × ``force_scale``."""
+    k = force_scale(params)
+    return tuple(k * v for v in (0.0, 20.0, 5.0, 30.0))
+
+
+def stick_slip_setup(params: FrictionParams) -> dict:
+    """Fig. 11's loop (Kp = 1000 N·m/rad, reference 0.1 rad/s, for v_s⁺ = 0.007 and F_s⁺ = 36)
+    in this parameter set's own scales: the reference as many v_s⁺ fast, Kp as stiff against
+    its F_s⁺ (a 14 N stage under 1000 N/m and 0.1 m/s is another experiment)."""
+    v = abs(params.stribeck.positive.vs) * (0.1 / abs(kuka_stribeck().positive.vs))
+    return {"velocity": v, "kp": 1000.0 * force_scale(params) * (0.1 / v)}
+
+
+def symmetric_ramp(params: FrictionParams, amplitude: float | None = None, rate: float | None = None) -> ExperimentResult:
+    """Fig. 1: applied force ramped 0 → +a → -a → +a; a loop appears only for symmetric extremes.
+    Default a = 25 N·m at 5 N·m/s, both × ``force_scale``."""
+    k = force_scale(params)
+    amplitude = 25.0 * k if amplitude is None else amplitude
+    rate = 5.0 * k if rate is None else rate
     T = amplitude / rate
     t, f = _ramp([0, T, 3 * T, 5 * T], [0, amplitude, -amplitude, amplitude])
     r = simulate_force(params, t, f)
-    return ExperimentResult("symmetric_ramp", [r], [params.model], {"amplitude": amplitude, "rate": rate})
+    u = params.units
+    return ExperimentResult("symmetric_ramp", [r], [params.model], {
+        "amplitude": amplitude, "rate": rate,
+        "drive": f"applied force 0 → ±{amplitude:.4g} {u.force} at {rate:.4g} {u.force}/{u.time}"})
 
 
 def loop_area(x: np.ndarray, F: np.ndarray) -> float:
@@ -45,14 +74,16 @@ def loop_area(x: np.ndarray, F: np.ndarray) -> float:
     return float(abs(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(x))))
 
 
-def abcd_ramp(params: FrictionParams, levels=(0.0, 20.0, 5.0, 30.0), rate: float = 1.0) -> ExperimentResult:
-    """Figs. 2, 3, 10: applied force A → B → C → D at a constant rate.
+def abcd_ramp(params: FrictionParams, levels=None, rate: float | None = None) -> ExperimentResult:
+    """Figs. 2, 3, 10: applied force A → B → C → D at a constant rate; default 0 → 20 → 5 → 30
+    N·m at 1 N·m/s, all × ``force_scale``.
 
     Summary: positions at B, C and where the C→D ramp passes B's force again (the Leuven
     model returns to B and continues the A→B curve; LuGre does not), and the energy of the
     internal loop B→C→(B's force).
     """
-    A, B, C, D = levels
+    A, B, C, D = abcd_levels(params) if levels is None else levels
+    rate = 1.0 * force_scale(params) if rate is None else rate
     tB = abs(B - A) / rate
     tC = tB + abs(B - C) / rate
     tD = tC + abs(D - C) / rate
@@ -69,6 +100,8 @@ def abcd_ramp(params: FrictionParams, levels=(0.0, 20.0, 5.0, 30.0), rate: float
         if r.position[iB] != r.position[iC] else float("nan"),
         "loop_energy": loop_area(r.position[iB : iBB + 1], r.friction_force[iB : iBB + 1]),
         "memory": r.memory,
+        "drive": f"applied force {A:.4g} → {B:.4g} → {C:.4g} → {D:.4g} {params.units.force} at {rate:.4g} "
+                 f"{params.units.force}/{params.units.time}",
     }
     return ExperimentResult("abcd_ramp", [r], [params.model], summary)
 
@@ -95,8 +128,13 @@ def constant_velocity_sweep(params: FrictionParams, velocities=None, settle_dist
                             {"velocity": [float(v) for v in velocities], "mean_friction": means})
 
 
-def stick_slip(params: FrictionParams, kp: float = 1000.0, velocity: float = 0.1, duration: float = 4.0) -> ExperimentResult:
-    """Fig. 11: P position control (Kp = 1000 N·m/rad) of a reference moving at 0.1 rad/s."""
+def stick_slip(params: FrictionParams, kp: float | None = None, velocity: float | None = None,
+               duration: float = 4.0) -> ExperimentResult:
+    """Fig. 11: P position control (Kp = 1000 N·m/rad) of a reference moving at 0.1 rad/s, by
+    default in the parameter set's own scales (``stick_slip_setup``; the paper's for its own)."""
+    setup = stick_slip_setup(params)
+    kp = setup["kp"] if kp is None else kp
+    velocity = setup["velocity"] if velocity is None else velocity
     t = np.arange(0.0, duration + 0.5 * DT, DT)
     r = simulate_closed_loop(params, t, velocity * t, kp=kp)
     moving = r.velocity > 0.05 * velocity
@@ -108,8 +146,11 @@ def stick_slip(params: FrictionParams, kp: float = 1000.0, velocity: float = 0.1
         if len(e):
             slips.append(float(r.position[e[0]] - r.position[s]))
     stuck = float(np.mean(np.abs(r.velocity) < 1e-4))
+    u = params.units
     return ExperimentResult("stick_slip", [r], [params.model],
-                            {"kp": kp, "velocity": velocity, "slip_distances": slips, "stuck_fraction": stuck})
+                            {"kp": kp, "velocity": velocity, "slip_distances": slips, "stuck_fraction": stuck,
+                             "drive": f"P control, Kp = {kp:.4g} {u.force}/{u.position}, reference "
+                                      f"{velocity:.4g} {u.position}/{u.time}"})
 
 
 def breakaway(params: FrictionParams, rates=None, v_slide: float = 0.05) -> ExperimentResult:
@@ -241,10 +282,13 @@ def tracking(params: FrictionParams, period: float = 10.0, velocity: float = 2e-
 
 
 EXPERIMENTS: dict[str, tuple[Callable[[FrictionParams], ExperimentResult], str]] = {
-    "symmetric_ramp": (symmetric_ramp, "Fig. 1: force ramped between ±25 N·m (loop only for symmetric extremes)"),
-    "abcd_ramp": (abcd_ramp, "Figs. 2/3/10: force 0 → 20 → 5 → 30 N·m at 1 N·m/s, internal loop closing"),
+    "symmetric_ramp": (symmetric_ramp, "Fig. 1: force ramped between ±25 N·m (× F_s⁺/36 of the file; loop only for "
+                                       "symmetric extremes)"),
+    "abcd_ramp": (abcd_ramp, "Figs. 2/3/10: force 0 → 20 → 5 → 30 N·m at 1 N·m/s (× F_s⁺/36 of the file), internal "
+                             "loop closing"),
     "constant_velocity_sweep": (constant_velocity_sweep, "Fig. 8: steady friction S(v) + σ2·v at ±(0.001 … 1) rad/s"),
-    "stick_slip": (stick_slip, "Fig. 11: P control, Kp = 1000 N·m/rad, reference 0.1 rad/s"),
+    "stick_slip": (stick_slip, "Fig. 11: P control, Kp = 1000 N·m/rad, reference 0.1 rad/s (in the file's own "
+                               "scales: × v_s⁺/0.007 and F_s⁺/36)"),
     "breakaway": (breakaway, "Figs. 12/13: break-away force vs applied-force rate 1 … 1000 N·m/s"),
     "frictional_lag": (frictional_lag, "Fig. 14: sinusoidal velocity 0.001 … 0.019 rad/s at 0.01/0.1/0.25 Hz"),
     "tracking": (tracking, "Figs. 16/17, Table III: low-velocity tracking, P / PI / PI+Coulomb FF / PI+model FF"),

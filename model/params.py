@@ -610,6 +610,7 @@ class FrictionParams:
         p = cls(model=model, stribeck=stribeck, transition_curve=tc, units=units, effects=tuple(effects),
                 uncertainty={str(k): _number(f"uncertainty.{k}", v) for k, v in unc.items()},
                 provenance=prov, **scalars)
+        _check_uncertainty_paths(p)
         if p.model == "lugre" and p.sigma0 is None:
             p.transition_curve.validate()
             p.stribeck.validate()
@@ -670,6 +671,20 @@ def _transition_curve_from(tcd) -> TransitionCurve:
     if not isinstance(shape, Mapping):
         raise ParameterError("transition_curve.shape: expected a mapping of A, z0, k")
     return TransitionCurve(kind=kind, shape=shape)
+
+
+def _check_uncertainty_paths(p: "FrictionParams") -> None:
+    """Every key of ``uncertainty`` names a parameter of the file (a schema path, or an effect's
+    parameter): a misspelt one ('stribeck.positive.Fss') would otherwise be read and shown
+    nowhere, as if that σ had been given."""
+    known = {s.path for s in schema(p, all_models=True)}
+    for i, eff in enumerate(p.effects):
+        params = eff.get("params") if isinstance(eff, Mapping) else None
+        known.update(f"effects.{i}.params.{k}" for k in (params or {}))
+    unknown = sorted(k for k in p.uncertainty if k not in known)
+    if unknown:
+        raise ParameterError(f"uncertainty.{unknown[0]}: no such parameter in this file (a σ is keyed by the "
+                             f"parameter's dotted path, e.g. stribeck.positive.Fs, transition_curve.F.1, sigma1)")
 
 
 def _validate_effects(effects) -> tuple:

@@ -16,7 +16,7 @@ import viser
 
 from ...model import FrictionParams, TransitionCurve, as_model, stribeck_curve
 from ...model.errors import FrictionError, ParameterError
-from ...model.experiments import abcd_ramp, stick_slip
+from ...model.experiments import abcd_levels, abcd_ramp, stick_slip, stick_slip_setup
 from .. import plots
 from .context import Context, plot_config
 from .controls import ParamControl, value_for
@@ -27,18 +27,6 @@ LIVE_RAMP_RATE = 20.0  # force units/s at Fs⁺ = 36: the live A→B→C→D ram
 STICK_SLIP_S = 3.0
 MAX_DATA_SIM = 200_000  # samples of a recording the live view simulates (the rest is cut, and said)
 OVERVIEW_ASPECT = 0.66  # viser's aspect is height/width: 4 views fit 1280×720 above the fold
-
-
-def abcd_levels(p: FrictionParams) -> tuple:
-    """A→B→C→D force levels of Fig. 10 (0, 20, 5, 30 N·m for Fs+ = 36) scaled to the model's Fs+."""
-    s = abs(p.stribeck.positive.Fs) / 36.0
-    return (0.0, 20.0 * s, 5.0 * s, 30.0 * s)
-
-
-def stick_slip_setup(p: FrictionParams) -> dict:
-    """Fig. 11's loop (Kp = 1000 N·m/rad, 0.1 rad/s for vs+ = 0.007, Fs+ = 36) in the model's own scales."""
-    v = abs(p.stribeck.positive.vs) * (0.1 / 0.007)
-    return {"velocity": v, "kp": abs(p.stribeck.positive.Fs) / (v * 0.36)}
 
 
 def to_piecewise(p: FrictionParams) -> FrictionParams:

@@ -122,3 +122,17 @@ def test_parameter_rows_mark_held_parameters(kuka):
     rows = {r.spec.path: r for r in P.parameter_rows(p)}
     assert rows["stribeck.positive.Fc"].status == "estimated" and rows["stribeck.positive.Fc"].stderr == 0.3
     assert rows["n"].status == "held" and rows["n"].value == 7.0
+
+
+def test_an_uncertainty_key_must_name_a_parameter_of_the_file(kuka):
+    d = kuka.to_dict()
+    d["uncertainty"] = {"stribeck.positive.Fs": 0.5, "transition_curve.F.4": 1.0, "sigma1": 10.0}
+    assert FrictionParams.from_dict(d).uncertainty["stribeck.positive.Fs"] == 0.5
+    # an effect's parameter is keyed by its place in the list
+    d["effects"] = [{"name": "time_drift", "params": {"t0": 0.0, "b": 0.1, "tau": 30.0}}]
+    d["uncertainty"]["effects.0.params.tau"] = 3.0
+    assert FrictionParams.from_dict(d).uncertainty["effects.0.params.tau"] == 3.0
+    for bad in ("stribeck.positive.Fss", "transition_curve.F.5", "effects.1.params.tau", "effects.0.params.T"):
+        d2 = dict(d, uncertainty={**d["uncertainty"], bad: 0.1})
+        with pytest.raises(ParameterError, match=rf"^uncertainty\.{bad}: no such parameter"):
+            FrictionParams.from_dict(d2)

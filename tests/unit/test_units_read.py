@@ -176,6 +176,13 @@ def test_a_motor_current_is_refused_saying_to_write_the_torque_constant_as_its_u
     p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [0.12 mN*m]"], [t, x, 1e3 * f]))
     rec = load_recording(p, columns={"force": "motor_current"})
     assert rec.units["force"] == "N*m" and np.allclose(rec.force, 0.12 * f)
+    # the constant given with --units and no column named: the unit names the column to name
+    p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [A]"], [t, x, f]))
+    with pytest.raises(DataError, match=r"a unit is given for the force \('0.12 N\*m'\), but no column is read as the "
+                                        r"force: name the column it is for, --columns force='motor_current \[A\]'$"):
+        load_recording(p, units={"force": "0.12 N*m"})
+    rec = load_recording(p, columns={"force": "motor_current [A]"}, units={"force": "0.12 N*m"})
+    assert rec.units["force"] == "N*m" and np.allclose(rec.force, 0.12 * f)
 
 
 def test_a_position_of_whole_numbers_without_a_unit_is_said_to_look_like_encoder_counts(tmp_path):
@@ -423,3 +430,22 @@ def test_a_load_at_zero_is_said_to_make_the_load_law_vanish():
     # the zeros lie outside what is compared
     assert load_not_pressing(load + 49.0, None, "load [N]", "N") is None
     assert load_not_pressing(load, load > 0, "payload_force [N]", "N") is None
+
+
+def test_a_torque_constant_with_a_decimal_comma_reads_as_with_a_point(tmp_path):
+    # a European logger's header and option: '5,9 N' per A is 5.9 N per A, in the header, in
+    # --units (whose pairs are separated by commas too) and in a column named with --columns
+    from leuven_friction.identify.data import parse_column_mapping, parse_unit_mapping
+
+    t, x, f = _signals()
+    assert parse_unit_mapping("force=5,9 N, time=ms") == {"force": "5,9 N", "time": "ms"}
+    assert parse_unit_mapping("position=mm,force=N") == {"position": "mm", "force": "N"}
+    assert parse_column_mapping("force=Motorstrom [5,9 N],time=Zeit") == {"force": "Motorstrom [5,9 N]", "time": "Zeit"}
+    p = tmp_path / "stage.csv"  # as such a logger writes it: semicolons, decimal commas
+    rows = (";".join(repr(float(c)).replace(".", ",") for c in row) for row in zip(t, x, f))
+    p.write_text("\n".join(["time [s];position [m];Motorstrom [5,9 N]", *rows]) + "\n")
+    rec = load_recording(p, columns={"force": "Motorstrom [5,9 N]"})
+    assert rec.units["force"] == "N" and np.allclose(rec.force, 5.9 * f)
+    p.write_text(_csv(["time [s]", "position [m]", "Motorstrom [A]"], [t, x, f]))
+    rec = load_recording(p, columns={"force": "Motorstrom [A]"}, units={"force": "5,9 N"})
+    assert np.allclose(rec.force, 5.9 * f)
