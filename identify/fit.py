@@ -21,7 +21,7 @@ from scipy.stats import chi2 as chi2_dist
 from scipy.stats import spearmanr
 
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
-from ..model.params import get_value, spec_of
+from ..model.params import get_value, reaching_knots, spec_of
 from ..model.simulate import stribeck_curve
 
 from .data import Recording
@@ -842,6 +842,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     if tfit is not None and (said := curve_coverage(res.params.replace(units=_units_of(recordings)),
                                                     min(branch_ends, default=np.inf))):
         res.notes.append(said)  # of the curve written (the refinement moves its knots' F_d)
+    if tfit is not None and (said := curve_continued(res.params.replace(units=_units_of(recordings)))):
+        res.notes.append(said)
 
     cost = {}
     if any(d.fit is not None for d in decisions.values()):
@@ -867,6 +869,23 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 
 
 CURVE_COVERS = 0.5  # a transition curve topping below this share of F_s⁺ − F_s⁻ is said to stop short
+
+
+def curve_continued(p: FrictionParams) -> str:
+    """A note where the model evaluates the curve written through one more knot than the file
+    holds (``model.params.reaching_knots``: its last segment too flat to reach the outer loop's
+    span by twice its last knot), or ""."""
+    tc = p.transition_curve
+    if tc.kind != "piecewise_linear" or len(tc.z) < 2:
+        return ""
+    z, F = reaching_knots(tc.z, tc.F, p.outer_loop_span)
+    if len(z) == len(tc.z):
+        return ""
+    unit = f" {p.units.force}" if p.units.force else ""
+    return (f"transition curve: its last segment ({tc.F[-2]:.4g} → {tc.F[-1]:.4g}{unit}) is too flat to reach the outer "
+            f"loop's span {F[-1]:.4g}{unit} (S(v) − F_b in sliding) by twice its last knot; the model goes on through "
+            f"({z[-1]:.3g}, {F[-1]:.4g}) so that sliding settles (README, the model's choices: transition curves) — "
+            f"not an estimate: the branches end before it")
 
 
 def curve_coverage(p: FrictionParams, v_end: float) -> str:

@@ -436,3 +436,15 @@ def test_a_transition_curve_stopping_short_of_the_outer_loop_is_said():
     assert "passes 0.001" in said
     assert "passes" not in curve_coverage(cut, float("inf"))
 
+
+
+def test_a_curve_the_model_continues_past_its_knots_is_said():
+    from leuven_friction.identify.fit import curve_continued
+    from leuven_friction.model import TransitionCurve, default_params
+
+    p = default_params()
+    assert curve_continued(p) == ""  # Table II reaches Table I's 36 + 63
+    flat = p.replace(transition_curve=TransitionCurve(z=(0.0, 1e-4, 2e-4), F=(0.0, 60.0, 60.001)))
+    said = curve_continued(flat)
+    # the knot the model adds: twice the last z, at the span 99
+    assert "(0.0004, 99)" in said and "60 → 60 N*m" in said and "not an estimate" in said, said
