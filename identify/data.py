@@ -409,8 +409,8 @@ def _signal_pairs(spec: str, option: str, what: str) -> list[tuple[str, str]]:
     out = []
     # a comma separates pairs only where a 'signal=' follows it: a decimal comma stays in its
     # value ("force=5,9 N", a European torque constant; "force=Motorstrom [5,9 N]")
-    for part in re.split(r",(?=\s*[A-Za-z_]\w*\s*=)", spec):
-        if "=" not in part:
+    for part in re.split(rf",(?=\s*(?:{'|'.join(SIGNALS)})\s*=)", spec):
+        if "=" not in part or part.rstrip().endswith(","):
             raise DataError(f"{option}: expected signal={what} pairs separated by commas, got {part!r}")
         k, v = (s.strip() for s in part.split("=", 1))
         if k not in SIGNALS:
@@ -656,7 +656,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         if cof is not None:
             mapping["friction"] = cof
     given = [sig for sig in ("force", "friction") if sig in (units or {})]
-    if given and not {"friction", "force"} & set(mapping):
+    uses_force = only is None or bool({"force", "friction"} & (set(only) | set(require)))
+    if given and uses_force and not {"friction", "force"} & set(mapping):
         # a unit given for a force no column is read as (``--units "force=5.9 N"`` beside a
         # 'motor_current [A]' column): the unit names no column, and the file's own message
         # would repeat the advice to give it

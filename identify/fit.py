@@ -902,7 +902,7 @@ def curve_coverage(p: FrictionParams, v_end: float) -> str:
     if tc.kind != "piecewise_linear" or not tc.F or not span > 0 or tc.F[-1] >= CURVE_COVERS * span:
         return ""
     unit = p.units.force
-    ends = (f"; a branch ends where its speed passes {v_end:.3g} {p.units.position}/s (0.3 × the slowest steady level), and "
+    ends = (f"; a branch ends where its speed passes {v_end:.3g} {p.units.position}/{p.units.time} (0.3 × the slowest steady level), and "
             f"presliding moved faster (a position loop's sines) is not read as one" if math.isfinite(v_end) else "")
     return (f"transition curve: its knots reach F_d = {tc.F[-1]:.4g}{(' ' + unit) if unit else ''} at z = {tc.z[-1]:.3g}, "
             f"{tc.F[-1] / span:.0%} of F_s⁺ − F_s⁻ ({span:.4g}), towards which F_d climbs over presliding: beyond, its "

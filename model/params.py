@@ -15,6 +15,7 @@ Pure data: reading and writing files lives in ``identify.paramfile``; ``model`` 
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping
 from dataclasses import MISSING, dataclass, field, fields, replace
 
@@ -542,6 +543,13 @@ class FrictionParams:
         return self
 
     def replace(self, **changes) -> "FrictionParams":
+        """A copy with ``changes``; a new transition curve drops the σ of knots it no longer has
+        (an explorer's removed knot, a tanh curve made piecewise)."""
+        if "transition_curve" in changes and "uncertainty" not in changes:
+            tc = changes["transition_curve"]
+            kept = {sp.path for sp in knot_specs(tc)} if tc is not None else set()
+            changes["uncertainty"] = {k: v for k, v in self.uncertainty.items()
+                                      if not k.startswith("transition_curve.") or k in kept}
         return replace(self, **changes)
 
     # -- plain dicts (the YAML shape) -------------------------------------------------------
@@ -610,7 +618,7 @@ class FrictionParams:
         p = cls(model=model, stribeck=stribeck, transition_curve=tc, units=units, effects=tuple(effects),
                 uncertainty={str(k): _number(f"uncertainty.{k}", v) for k, v in unc.items()},
                 provenance=prov, **scalars)
-        _check_uncertainty_paths(p)
+        p = _check_uncertainty_paths(p)
         if p.model == "lugre" and p.sigma0 is None:
             p.transition_curve.validate()
             p.stribeck.validate()
@@ -673,18 +681,26 @@ def _transition_curve_from(tcd) -> TransitionCurve:
     return TransitionCurve(kind=kind, shape=shape)
 
 
-def _check_uncertainty_paths(p: "FrictionParams") -> None:
+_CURVE_SIGMA = re.compile(r"^transition_curve\.((z|F)\.\d+|shape\.(A|z0|k))$")
+
+
+def _check_uncertainty_paths(p: "FrictionParams") -> "FrictionParams":
     """Every key of ``uncertainty`` names a parameter of the file (a schema path, or an effect's
     parameter): a misspelt one ('stribeck.positive.Fss') would otherwise be read and shown
-    nowhere, as if that σ had been given."""
+    nowhere, as if that σ had been given. The σ of a knot the curve no longer has (a file saved
+    after a knot was removed, before ``replace`` dropped such σ) is dropped, not refused."""
     known = {s.path for s in schema(p, all_models=True)}
     for i, eff in enumerate(p.effects):
         params = eff.get("params") if isinstance(eff, Mapping) else None
         known.update(f"effects.{i}.params.{k}" for k in (params or {}))
+    stale = [k for k in p.uncertainty if k not in known and _CURVE_SIGMA.match(k)]
+    if stale:
+        p = replace(p, uncertainty={k: v for k, v in p.uncertainty.items() if k not in stale})
     unknown = sorted(k for k in p.uncertainty if k not in known)
     if unknown:
         raise ParameterError(f"uncertainty.{unknown[0]}: no such parameter in this file (a σ is keyed by the "
                              f"parameter's dotted path, e.g. stribeck.positive.Fs, transition_curve.F.1, sigma1)")
+    return p
 
 
 def _validate_effects(effects) -> tuple:

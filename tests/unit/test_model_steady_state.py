@@ -44,7 +44,7 @@ def test_sweep_reproduces_table_one_shape(kuka):
     assert F[neg][0] < F[neg][4] and F[neg][-1] < F[neg][5]
 
 
-@pytest.mark.parametrize("v", [0.004, 0.3])
+@pytest.mark.parametrize("v", [0.004, 0.3, -0.004, -0.3])
 def test_sliding_settles_when_the_curve_tops_short_of_the_outer_loop(kuka, v):
     """A fitted F_d may end flat below F_s⁺ − F_s⁻ (branches stopping where the contact starts
     to slide). Eq. (5) must still settle after a reversal from the other sliding direction:
@@ -54,17 +54,18 @@ def test_sliding_settles_when_the_curve_tops_short_of_the_outer_loop(kuka, v):
     p = kuka.replace(transition_curve=TransitionCurve(kind="piecewise_linear", z=(0.0, 1e-4, 2e-4),
                                                       F=(0.0, 60.0, 60.001)))
     assert p.outer_loop_span > 90.0  # Table I: 36 + 63, well above the curve's top
-    # slide negative for 0.05 rad, then positive for 0.05 rad (250 curve lengths each way)
+    # slide against v for 0.05 rad, then with it for 0.05 rad (250 curve lengths each way)
     dt = 2e-5 / abs(v)
     t = np.arange(0.0, 0.1 / abs(v), dt)
-    x = np.where(t < 0.05 / abs(v), -v * t, -0.05 + v * (t - 0.05 / abs(v)))
+    T1 = 0.05 / abs(v)
+    x = np.where(t < T1, -v * t, -v * T1 + v * (t - T1))
     r = simulate_displacement(p, t, x)
     S, sigma2 = paper_steady_state(v)
     back = t > 0.05 / abs(v)
     assert r.friction_force[-1] == pytest.approx(S + sigma2 * v, abs=1e-3)
     # settled within ten curve lengths of the reversal (2e-3 rad): before the curve was made to
     # reach the span, z ran on for metres there and σ1·dz/dt read −600 N on a guideway's fit
-    past = back & (x > -0.05 + 2e-3)
+    past = back & (np.abs(x + v * T1) > 2e-3)
     assert np.max(np.abs(r.friction_force[past] - (S + sigma2 * v))) < 1e-2 * abs(S)
     # a curve that reaches the span (Table II's) is evaluated as given
     from leuven_friction.model.params import reaching_knots

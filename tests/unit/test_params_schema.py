@@ -132,7 +132,14 @@ def test_an_uncertainty_key_must_name_a_parameter_of_the_file(kuka):
     d["effects"] = [{"name": "time_drift", "params": {"t0": 0.0, "b": 0.1, "tau": 30.0}}]
     d["uncertainty"]["effects.0.params.tau"] = 3.0
     assert FrictionParams.from_dict(d).uncertainty["effects.0.params.tau"] == 3.0
-    for bad in ("stribeck.positive.Fss", "transition_curve.F.5", "effects.1.params.tau", "effects.0.params.T"):
+    for bad in ("stribeck.positive.Fss", "transition_curve.Fd.1", "effects.1.params.tau", "effects.0.params.T"):
         d2 = dict(d, uncertainty={**d["uncertainty"], bad: 0.1})
         with pytest.raises(ParameterError, match=rf"^uncertainty\.{bad}: no such parameter"):
             FrictionParams.from_dict(d2)
+    # the σ of a knot the curve no longer has (removed in the explorer, or a file saved so) is
+    # dropped: by ``replace`` when the curve changes, and on reading
+    p = FrictionParams.from_dict(d)
+    cut = p.replace(transition_curve=TransitionCurve(z=kuka.transition_curve.z[:-1], F=kuka.transition_curve.F[:-1]))
+    assert "transition_curve.F.4" not in cut.uncertainty and cut.uncertainty["sigma1"] == 10.0
+    d3 = dict(cut.to_dict(), uncertainty={**d["uncertainty"]})
+    assert set(FrictionParams.from_dict(d3).uncertainty) == {"stribeck.positive.Fs", "sigma1", "effects.0.params.tau"}

@@ -183,6 +183,9 @@ def test_a_motor_current_is_refused_saying_to_write_the_torque_constant_as_its_u
         load_recording(p, units={"force": "0.12 N*m"})
     rec = load_recording(p, columns={"force": "motor_current [A]"}, units={"force": "0.12 N*m"})
     assert rec.units["force"] == "N*m" and np.allclose(rec.force, 0.12 * f)
+    # a command that reads no force (a simulation driven by the position) is not stopped by it
+    rec = load_recording(p, units={"force": "0.12 N*m"}, require=("time", "position"), only=("time", "position"))
+    assert np.array_equal(rec.position, x)
 
 
 def test_a_position_of_whole_numbers_without_a_unit_is_said_to_look_like_encoder_counts(tmp_path):
@@ -440,6 +443,10 @@ def test_a_torque_constant_with_a_decimal_comma_reads_as_with_a_point(tmp_path):
     t, x, f = _signals()
     assert parse_unit_mapping("force=5,9 N, time=ms") == {"force": "5,9 N", "time": "ms"}
     assert parse_unit_mapping("position=mm,force=N") == {"position": "mm", "force": "N"}
+    with pytest.raises(DataError, match="got 'force=N,'"):  # a trailing comma is no unit's
+        parse_unit_mapping("force=N,")
+    # a column whose name holds a comma and an '=' is one column, not a second pair
+    assert parse_column_mapping("force=a,b=c") == {"force": "a,b=c"}
     assert parse_column_mapping("force=Motorstrom [5,9 N],time=Zeit") == {"force": "Motorstrom [5,9 N]", "time": "Zeit"}
     p = tmp_path / "stage.csv"  # as such a logger writes it: semicolons, decimal commas
     rows = (";".join(repr(float(c)).replace(".", ",") for c in row) for row in zip(t, x, f))
