@@ -880,4 +880,13 @@ def sanity_warnings(p: FrictionParams) -> list[str]:
         if tc.F[-1] < 0.5 * Fs:
             out.append(f"the transition curve ends at {tc.F[-1]:.4g}, well below |Fs| = {Fs:.4g}: "
                        "presliding beyond the last knot follows its extended last segment")
+    elif tc.kind == "tanh_linear" and tc.shape is not None:
+        # a tanh curve is evaluated as written (``reaching_knots`` is for knots): where it reaches
+        # the outer loop's span only far past its bend, eq. (5) settles in sliding only there
+        A, z0, k = tc.shape["A"], tc.shape["z0"], tc.shape["k"]
+        span = p.outer_loop_span
+        if span > A and (k <= 0 or (span - A) / k > 20.0 * z0):
+            out.append(f"the tanh transition curve (A = {A:.4g}, k = {k:.3g}) reaches the outer loop's span {span:.4g} "
+                       f"only past z = {(span - A) / k if k > 0 else float('inf'):.3g}, {((span - A) / k / z0) if k > 0 else float('inf'):.3g} × z0: "
+                       "sliding settles only there, and σ1·dz/dt acts until then")
     return out

@@ -61,3 +61,24 @@ def test_lugre_sigma0_is_the_readme_value_and_the_least_squares_fit_of_fig4():
     sigma0 = as_model(default_params(), "lugre").sigma0
     assert sigma0 == pytest.approx(independent, rel=1e-3)
     assert sigma0 == pytest.approx(3.17e5, rel=5e-3)  # the README's "σ0 = 3.17e5 N·m/rad"
+
+
+def test_a_tanh_curve_short_of_the_outer_loop_is_warned_of_and_does_not_settle(kuka):
+    """A tanh curve topping below F_s⁺ − F_s⁻ with a small k reaches that span only far past
+    its bend: said by ``sanity_warnings``, and true of the simulation (a curve that reaches it is
+    not warned of, and settles)."""
+    from leuven_friction.model.params import TanhShape, sanity_warnings
+
+    def after_reversal(p, v=0.01):
+        T1 = 0.02 / v
+        t = np.arange(0.0, 2 * T1, 2e-6 / v)
+        x = np.where(t < T1, -v * t, -v * T1 + v * (t - T1))
+        return simulate_displacement(p, t, x).friction_force[-1]
+
+    S_plus = 27.0 + 9.0 * np.exp(-(0.01 / 0.007) ** 0.5) + 7.7 * 0.01  # Table I, v = 0.01 rad/s
+    short = kuka.replace(transition_curve=TransitionCurve(kind="tanh_linear", shape=TanhShape(A=60.0, z0=1e-4, k=1.0)))
+    assert any("reaches the outer loop's span 99 only past" in w for w in sanity_warnings(short))
+    assert abs(after_reversal(short) - S_plus) > 0.1 * S_plus  # 0.02 rad on: not settled
+    reaching = kuka.replace(transition_curve=TransitionCurve(kind="tanh_linear", shape=TanhShape(A=90.0, z0=1e-4, k=1e5)))
+    assert not any("outer loop" in w for w in sanity_warnings(reaching))
+    assert after_reversal(reaching) == pytest.approx(S_plus, rel=1e-3)
