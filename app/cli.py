@@ -173,7 +173,13 @@ def cmd_simulate(args) -> int:
     if params.effects:
         # a model extended by the diagnosis predicts with its effects, for either drive (the
         # one prediction path of model.effects; a force drive evaluates them along its motion)
-        from ..model.effects import Signals, predict
+        from ..model.effects import Signals, effect_of, predict
+
+        loaded = [e["name"] for e in params.effects if "load" in effect_of(e["name"]).needs]
+        if loaded and rec.normal_load is None:
+            # said with the file and the option, before the model's own "needs the load signal"
+            raise UserError(f"{args.input}: the parameter file's effect {loaded[0]} needs the normal load, and no "
+                            f"column of this file is read as it: name it with --columns normal_load=<column>")
 
         sig = Signals(time=rec.time, position=position if args.drive == "displacement" else None,
                       force=rec.force, load=rec.normal_load)

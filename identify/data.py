@@ -125,6 +125,8 @@ def unit_of(unit: str, sig: str) -> tuple[float, str] | None:
     # read without case but for 'MN': M is mega where m is milli (a bearing's MN·m; 'MN' lowered
     # had been read as mN, 10⁹ times small)
     key = ("megan" + raw[2:] if raw.startswith("MN") else raw).lower()
+    # the Greek small mu (U+03BC, what many keyboards and loggers write) as the micro sign (U+00B5)
+    key = key.replace("\u03bc", "\u00b5")
     if key.replace(" ", "") == "nm" and sig in ("force", "friction", "normal_load"):
         return UNITS["nm_torque"]
     if key.replace(" ", "") in UNITS:
@@ -407,9 +409,10 @@ def columns_option(sig: str, col: str, negated: bool = False) -> str:
 def _signal_pairs(spec: str, option: str, what: str) -> list[tuple[str, str]]:
     """The 'signal=value' pairs of an option's comma-separated ``spec``, each signal known."""
     out = []
-    # a comma separates pairs only where a 'signal=' follows it: a decimal comma stays in its
-    # value ("force=5,9 N", a European torque constant; "force=Motorstrom [5,9 N]")
-    for part in re.split(rf",(?=\s*(?:{'|'.join(SIGNALS)})\s*=)", spec):
+    # a comma separates pairs only where a 'name=' follows it: a decimal comma stays in its
+    # value ("force=5,9 N", a European torque constant; "force=Motorstrom [5,9 N]"), and a
+    # signal misnamed ("load=Fz") is refused as one, not read into the column before it
+    for part in re.split(r",(?=\s*[A-Za-z_]\w*\s*=)", spec):
         if "=" not in part or part.rstrip().endswith(","):
             raise DataError(f"{option}: expected signal={what} pairs separated by commas, got {part!r}")
         k, v = (s.strip() for s in part.split("=", 1))

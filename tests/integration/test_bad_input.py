@@ -4,6 +4,8 @@ runs in-process through ``main(argv)``. (The loader and fit cases are in
 tests/unit/test_fit_recordings.py.)"""
 
 import os
+
+import numpy as np
 import socket
 
 import pytest
@@ -329,3 +331,23 @@ def test_a_reading_threshold_set_reaches_the_report_marked(tmp_path, capsys):
     assert "|v| < 0.002 rad/s (set) counts as presliding" in res["notes"][0]
     assert "0.001 rad (set) of back-travel" in res["notes"][0] and "samples (set)" not in res["notes"][0]
     assert "|v| < 0.002 rad/s (set)" in text
+
+
+def test_a_load_effect_without_a_load_column_names_the_file_and_the_option(tmp_path, capsys):
+    # a diagnosed file with a normal-load effect, driven by a recording whose load column is
+    # not named as one (a rig's 'Fz'): said with the file and --columns, nothing written
+    d = default_params().to_dict()
+    d["effects"] = [{"name": "normal_load", "params": {"alpha": 0.8, "N0": 35.0}}]
+    p = param_file(tmp_path, text=yaml.safe_dump(d))
+    rec = tmp_path / "rig.csv"
+    t = np.arange(200) * 1e-3
+    rec.write_text("time [s],position [rad],Fz [N]\n" + "".join(f"{a},{1e-4 * np.sin(9 * a)},35\n" for a in t))
+    rc, _, err = run(capsys, "simulate", "--input", rec, "--params", p, "--out", tmp_path / "o.csv")
+    # (the reading's notes come first: the column left unread among them)
+    assert rc == 2 and err.strip().splitlines()[-1] == (f"error: {rec}: the parameter file's effect normal_load needs the normal load, "
+                                         f"and no column of this file is read as it: name it with --columns "
+                                         f"normal_load=<column>"), err
+    assert not (tmp_path / "o.csv").exists()
+    rc, _, err = run(capsys, "simulate", "--input", rec, "--columns", "normal_load=Fz", "--params", p,
+                     "--out", tmp_path / "o.csv")
+    assert rc == 0 and (tmp_path / "o.csv").exists(), err

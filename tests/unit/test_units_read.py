@@ -438,15 +438,18 @@ def test_a_load_at_zero_is_said_to_make_the_load_law_vanish():
 def test_a_torque_constant_with_a_decimal_comma_reads_as_with_a_point(tmp_path):
     # a European logger's header and option: '5,9 N' per A is 5.9 N per A, in the header, in
     # --units (whose pairs are separated by commas too) and in a column named with --columns
-    from leuven_friction.identify.data import parse_column_mapping, parse_unit_mapping
+    from leuven_friction.identify.data import parse_column_mapping, parse_unit_mapping, unit_of
 
     t, x, f = _signals()
     assert parse_unit_mapping("force=5,9 N, time=ms") == {"force": "5,9 N", "time": "ms"}
     assert parse_unit_mapping("position=mm,force=N") == {"position": "mm", "force": "N"}
     with pytest.raises(DataError, match="got 'force=N,'"):  # a trailing comma is no unit's
         parse_unit_mapping("force=N,")
-    # a column whose name holds a comma and an '=' is one column, not a second pair
-    assert parse_column_mapping("force=a,b=c") == {"force": "a,b=c"}
+    # a misnamed signal after a comma is refused as one, not read into the column before it
+    with pytest.raises(DataError, match="unknown signal 'load'"):
+        parse_column_mapping("friction=Fx,load=Fz")
+    # the Greek small mu as the micro sign
+    assert unit_of("\u03bcm", "position") == unit_of("\u00b5m", "position") == (1e-6, "m")
     assert parse_column_mapping("force=Motorstrom [5,9 N],time=Zeit") == {"force": "Motorstrom [5,9 N]", "time": "Zeit"}
     p = tmp_path / "stage.csv"  # as such a logger writes it: semicolons, decimal commas
     rows = (";".join(repr(float(c)).replace(".", ",") for c in row) for row in zip(t, x, f))
