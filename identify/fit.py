@@ -21,7 +21,7 @@ from scipy.stats import chi2 as chi2_dist
 from scipy.stats import spearmanr
 
 from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, default_params
-from ..model.params import get_value, reaching_knots, spec_of
+from ..model.params import REACH_WITHIN, get_value, reaching_knots, spec_of
 from ..model.simulate import stribeck_curve
 
 from .data import Recording
@@ -874,7 +874,7 @@ CURVE_COVERS = 0.5  # a transition curve topping below this share of F_s⁺ − 
 def curve_continued(p: FrictionParams) -> str:
     """A note where the model evaluates the curve written through one more knot than the file
     holds (``model.params.reaching_knots``: its last segment too flat to reach the outer loop's
-    span by twice its last knot), or ""."""
+    span by ``REACH_WITHIN`` times its last knot), or ""."""
     tc = p.transition_curve
     if tc.kind != "piecewise_linear" or len(tc.z) < 2:
         return ""
@@ -883,7 +883,7 @@ def curve_continued(p: FrictionParams) -> str:
         return ""
     unit = f" {p.units.force}" if p.units.force else ""
     return (f"transition curve: its last segment ({tc.F[-2]:.4g} → {tc.F[-1]:.4g}{unit}) is too flat to reach the outer "
-            f"loop's span {F[-1]:.4g}{unit} (S(v) − F_b in sliding) by twice its last knot; the model goes on through "
+            f"loop's span {F[-1]:.4g}{unit} (S(v) − F_b in sliding) by {REACH_WITHIN:g} times its last knot; the model goes on through "
             f"({z[-1]:.3g}, {F[-1]:.4g}) so that sliding settles (README, the model's choices: transition curves) — "
             f"not an estimate: the branches end before it")
 
@@ -892,7 +892,7 @@ def curve_coverage(p: FrictionParams, v_end: float) -> str:
     """A note where the fitted transition curve tops out below CURVE_COVERS of the outer loop's
     span F_s⁺ − F_s⁻ (the force F_d climbs towards over presliding: Table II's 100 N·m against
     Table I's 36 + 63), or "": beyond its last knot the last segment's slope goes on (or the
-    slope that reaches the span at twice the last knot, ``model.params.reaching_knots``),
+    slope that reaches the span at 20 times the last knot, ``model.params.reaching_knots``),
     stiffer than a curve bending into sliding. ``v_end``: the speed at which a branch was ended (0.3 ×
     the slowest steady level), said because a position loop's presliding sines pass it — a
     joint made apart had its curve stop at 0.168 mrad and 8.5 N·m of a 32 N·m span, its
@@ -906,7 +906,7 @@ def curve_coverage(p: FrictionParams, v_end: float) -> str:
             f"presliding moved faster (a position loop's sines) is not read as one" if math.isfinite(v_end) else "")
     return (f"transition curve: its knots reach F_d = {tc.F[-1]:.4g}{(' ' + unit) if unit else ''} at z = {tc.z[-1]:.3g}, "
             f"{tc.F[-1] / span:.0%} of F_s⁺ − F_s⁻ ({span:.4g}), towards which F_d climbs over presliding: beyond, its "
-            f"last segment's slope goes on (or, if that reaches the span only past {2 * tc.z[-1]:.3g}, the slope that "
+            f"last segment's slope goes on (or, if that reaches the span only past {REACH_WITHIN * tc.z[-1]:.3g}, the slope that "
             f"reaches it there), stiffer than a curve bending into sliding, so wider presliding is not "
             f"estimated{ends}")
 MISFIT_CHI2_RED = 4.0  # a refinement leaving its residuals twice the noise floor: its σ are said to be of a misfit

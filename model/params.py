@@ -360,10 +360,14 @@ class TanhShape(_RecordMapping):
             _spec(f, f"{path}.{f.name}", PAPER_UNITS).check(getattr(self, f.name))
 
 
+REACH_WITHIN = 20.0  # a curve's extension must reach the outer loop's span by this many times its last knot
+
+
 def reaching_knots(z, F, reach: float) -> tuple[np.ndarray, np.ndarray]:
     """The knots of a piecewise-linear F_d as the kernels evaluate it: the knots given, and,
     where the last segment's slope carried on would reach ``reach`` (the outer loop's span
-    F_s⁺ − F_s⁻) only beyond twice the last knot, one more knot at (2·z_last, reach).
+    F_s⁺ − F_s⁻) only beyond ``REACH_WITHIN`` (20) times the last knot, one more knot at
+    (20·z_last, reach).
 
     Why: eq. (5) settles in sliding where F_d(z) = S(v) − F_b, which after a reset is up to
     that span. A curve topping below it with a nearly flat last segment (a fit whose branches
@@ -371,14 +375,17 @@ def reaching_knots(z, F, reach: float) -> tuple[np.ndarray, np.ndarray]:
     of 58.3 N) puts that point metres away; z then runs on, and σ1·dz/dt reaches hundreds of
     newtons in every fast stroke. Continued this way, every force difference the memory can
     ask for is reached within presliding's own scale; a curve that gets there already (Table
-    II's 100 N·m for Table I's 36 + 63) is evaluated as given."""
+    II's 100 N·m for Table I's 36 + 63), or whose last slope gets there within 20 of its last
+    knot, is evaluated as given: a fitted curve's knots end where its branches end, and a stage
+    whose curve stopped at 1.5 µm, with a last slope reaching the span at 10 times that (the
+    generator's own curve reaches it at 7), was bent into sliding when twice was the bound."""
     z, F = np.asarray(z, dtype=np.float64), np.asarray(F, dtype=np.float64)
     if len(z) < 2 or not reach > F[-1] or not z[-1] > z[-2]:
         return z, F
     slope = (F[-1] - F[-2]) / (z[-1] - z[-2])
-    if F[-1] + slope * z[-1] >= reach:
+    if F[-1] + slope * (REACH_WITHIN - 1.0) * z[-1] >= reach:
         return z, F
-    return np.append(z, 2.0 * z[-1]), np.append(F, reach)
+    return np.append(z, REACH_WITHIN * z[-1]), np.append(F, reach)
 
 
 @dataclass(frozen=True)
@@ -454,7 +461,7 @@ class TransitionCurve:
     def kernel_arrays(self, reach: float = 0.0) -> tuple[int, np.ndarray, np.ndarray]:
         """(kind code, abscissas, ordinates-or-shape) for ``model.kernels``; ``reach``: the
         largest force difference the memory asks of F_d (``FrictionParams.outer_loop_span``),
-        which a piecewise-linear curve is made to reach by twice its last knot
+        which a piecewise-linear curve is made to reach by 20 times its last knot
         (``reaching_knots``)."""
         if self.kind == "piecewise_linear":
             z, F = reaching_knots(self.z, self.F, reach)

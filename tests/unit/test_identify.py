@@ -446,5 +446,5 @@ def test_a_curve_the_model_continues_past_its_knots_is_said():
     assert curve_continued(p) == ""  # Table II reaches Table I's 36 + 63
     flat = p.replace(transition_curve=TransitionCurve(z=(0.0, 1e-4, 2e-4), F=(0.0, 60.0, 60.001)))
     said = curve_continued(flat)
-    # the knot the model adds: twice the last z, at the span 99
-    assert "(0.0004, 99)" in said and "60 → 60 N*m" in said and "not an estimate" in said, said
+    # the knot the model adds: 20 times the last z, at the span 99
+    assert "(0.004, 99)" in said and "60 → 60 N*m" in said and "not an estimate" in said, said

@@ -63,9 +63,10 @@ def test_sliding_settles_when_the_curve_tops_short_of_the_outer_loop(kuka, v):
     S, sigma2 = paper_steady_state(v)
     back = t > 0.05 / abs(v)
     assert r.friction_force[-1] == pytest.approx(S + sigma2 * v, abs=1e-3)
-    # settled within ten curve lengths of the reversal (2e-3 rad): before the curve was made to
-    # reach the span, z ran on for metres there and σ1·dz/dt read −600 N on a guideway's fit
-    past = back & (np.abs(x + v * T1) > 2e-3)
+    # settled within 50 curve lengths of the reversal (0.01 rad; the span is reached at 20): before
+    # the curve was made to reach it, z ran on for metres there and σ1·dz/dt read −600 N on a
+    # guideway's fit
+    past = back & (np.abs(x + v * T1) > 1e-2)
     assert np.max(np.abs(r.friction_force[past] - (S + sigma2 * v))) < 1e-2 * abs(S)
     # a curve that reaches the span (Table II's) is evaluated as given
     from leuven_friction.model.params import reaching_knots
