@@ -131,6 +131,8 @@ def cmd_simulate(args) -> int:
     if args.experiment:
         if args.experiment not in EXPERIMENTS:
             raise UserError(f"--experiment: unknown {args.experiment!r}; known: {', '.join(EXPERIMENTS)}")
+        if said := held_inertia_note(args.params, params, "force"):
+            print(said, file=sys.stderr)
         res = run_experiment(args.experiment, params)
         table = _table(res.runs, res.labels)
         _write_table(table, args.out)
@@ -158,6 +160,8 @@ def cmd_simulate(args) -> int:
         print(default_params_warning(params.units, rec.units), file=sys.stderr)
     elif (warning := units_mismatch(args.params, params, rec)):
         print(warning, file=sys.stderr)
+    if said := held_inertia_note(args.params, params, args.drive):
+        print(said, file=sys.stderr)
     position = rec.position
     if args.smooth_path:
         import numpy as np
@@ -199,6 +203,20 @@ def say_reading(rec) -> None:
     """How a recording was read (units converted, columns ignored, rows left out), on stderr."""
     for note in rec.notes:
         print(f"{rec.source}: {note}", file=sys.stderr)
+
+
+def held_inertia_note(path: str | None, params, drive: str) -> str:
+    """A line where the parameter file's inertia was held by the fit, not estimated (its
+    ``provenance.held``: a recording of measured friction does not determine it, and the fit
+    keeps the built-in paper's 5 kg·m²), or "": a joint with 0.9 N·m of friction, simulated along
+    its own motion, read ±91 N·m of applied force from that 5, and nothing said."""
+    held = (params.provenance or {}).get("held") or {}
+    if not path or "inertia" not in held:
+        return ""
+    what = ("the applied_force column (friction + inertia × acceleration, eq. (8)) depends on it, the friction "
+            "column does not" if drive == "displacement" else "the motion simulated depends on it")
+    return (f"note: {path}: inertia {params.inertia:g} was held by the fit, not estimated (provenance.held.inertia "
+            f"says why): {what}; set this machine's inertia in the file")
 
 
 def default_params_warning(param_units: dict, rec_units: dict) -> str:
@@ -335,8 +353,19 @@ def cmd_diagnose(args) -> int:
     if args.out:
         what = ("with " + ", ".join(d.effects) if d.effects else
                 "(its base refitted alone)" if d.params_after is not d.params_before else "(unchanged)")
-        print(f"model {what} -> {args.out}")
+        print(f"model {what} -> {args.out}{held_effects_said(d.params_after.effects, d.effects)}")
     return 0
+
+
+def held_effects_said(written, named) -> str:
+    """The effects a written model carries that were not named (a stiffness effect an effect was
+    judged beside, held with it: ``presliding_range``), with their values, or "": a user found
+    ``presliding_range e = −0.42`` in the file and nothing on the console said it."""
+    held = [e for e in written if e["name"] not in named]
+    if not held:
+        return ""
+    return "; also written, held beside them and not named: " + "; ".join(
+        f"{e['name']} ({', '.join(f'{k} = {v:.3g}' for k, v in e['params'].items())})" for e in held)
 
 
 def _positive_n(text: str) -> float:

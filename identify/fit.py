@@ -844,6 +844,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         res.notes.append(said)  # of the curve written (the refinement moves its knots' F_d)
     if tfit is not None and (said := curve_continued(res.params.replace(units=_units_of(recordings)))):
         res.notes.append(said)
+    if said := direction_asymmetry(res.params.replace(units=_units_of(recordings))):
+        res.notes.append(said)
 
     cost = {}
     if any(d.fit is not None for d in decisions.values()):
@@ -909,6 +911,39 @@ def curve_coverage(p: FrictionParams, v_end: float) -> str:
             f"last segment's slope goes on (or, if that reaches the span only past {REACH_WITHIN * tc.z[-1]:.3g}, the slope that "
             f"reaches it there), stiffer than a curve bending into sliding, so wider presliding is not "
             f"estimated{ends}")
+ASYMMETRY_SIGMAS = 3.0  # sides' Coulomb levels whose sizes differ by more σ than this are said to
+
+
+def direction_asymmetry(p: FrictionParams) -> str:
+    """A note where |F_c⁺| and |F_c⁻| differ by over ASYMMETRY_SIGMAS σ, or "". A friction that
+    depends on the direction does this, and so does an offset c of the force signal, which is not
+    part of the model: it adds c to the friction read both ways, so |F_c⁺| − |F_c⁻| = 2c, and
+    |F_s⁺| − |F_s⁻| the same 2c. The levels cannot tell the two apart, so both are said, with
+    whether the F_s agree with an offset (a belt axis made apart, its current read with an
+    offset, came out asymmetric and nothing was said)."""
+    diff = {}
+    for k in ("Fc", "Fs"):
+        sd = [p.uncertainty.get(f"stribeck.{side}.{k}") for side in ("positive", "negative")]
+        if None not in sd:
+            diff[k] = (abs(getattr(p.stribeck.positive, k)) - abs(getattr(p.stribeck.negative, k)), math.hypot(*sd))
+    if "Fc" not in diff:
+        return ""
+    d, sd = diff["Fc"]
+    if not (sd > 0 and abs(d) > ASYMMETRY_SIGMAS * sd):
+        return ""
+    unit = f" {p.units.force}" if p.units.force else ""
+    alike = ""
+    if "Fs" in diff:
+        ds, sds = diff["Fs"]
+        agree = abs(ds - d) <= 2.0 * math.hypot(sd, sds)
+        alike = (f"; |F_s⁺| − |F_s⁻| = {ds:.3g} ± {sds:.2g}{unit}, "
+                 + ("as an offset would make it too" if agree else "which an offset alone would make equal to it"))
+    return (f"S(v): |F_c⁺| − |F_c⁻| = {d:.3g} ± {sd:.2g}{unit} ({abs(d) / sd:.0f} σ): a friction that differs by "
+            f"direction does this, and so does an offset of {d / 2:.3g}{unit} in the force signal (not part of the "
+            f"model, it adds to the friction read both ways){alike}; the force read at rest with the drive off tells "
+            f"them apart")
+
+
 MISFIT_CHI2_RED = 4.0  # a refinement leaving its residuals twice the noise floor: its σ are said to be of a misfit
 
 

@@ -404,7 +404,8 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
            "repeated at the session's end", {"c1": 0.0, "c2": 0.0}),
     Effect("presliding_range", "the presliding range follows the friction effects' factor m as m^e (the "
            "presliding stiffness as m^(1−e)): e = 0, the spring stiffens with friction; e = 1, its stiffness "
-           "stays and the range to break-away grows with friction", "stiffness",
+           "stays and the range to break-away grows with friction; e < 0, the spring stiffens faster than "
+           "friction rises and the range shrinks; e > 1, it softens as friction rises", "stiffness",
            (EffectParam("e", "1", -2.0, 3.0, "exponent of the presliding range in the friction effects' factor"),),
            ("friction_factor",), _presliding_range, "presliding cycles of one amplitude repeated as the friction "
            "effect moves (after warm-up, at another load)", {"e": 0.0}),

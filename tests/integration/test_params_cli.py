@@ -107,6 +107,31 @@ def test_cli_simulate_input_uses_recorded_position(tmp_path, capsys):
     assert F[-1] == pytest.approx(_steady_friction("negative", -v), abs=1e-3)
 
 
+def test_cli_simulate_says_an_inertia_the_fit_held_and_what_depends_on_it(tmp_path, capsys, kuka):
+    # a fit of measured friction keeps the built-in inertia (provenance.held): simulated along a
+    # motion, the applied force is friction + I·ẍ (eq. (8)) from that held I, the friction not
+    t = np.arange(0, 2, 1e-3)
+    x = 0.05 * np.sin(2 * np.pi * t)
+    rec = tmp_path / "rec.csv"
+    pd.DataFrame({"time": t, "position": x}).to_csv(rec, index=False)
+    runs = {}
+    for inertia, held in ((5.0, True), (0.5, False)):
+        prov = {"held": {"inertia": "not needed: kept from the built-in default"}} if held else {}
+        pfile = tmp_path / f"p{inertia}.yaml"
+        save_params(kuka.replace(inertia=inertia, provenance=prov), pfile)
+        out = tmp_path / f"o{inertia}.csv"
+        rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "displacement", "--params", pfile, "--out", out)
+        assert rc == 0, err
+        assert (f"inertia {inertia:g} was held by the fit, not estimated" in err) == held, err
+        runs[inertia] = pd.read_csv(out)
+    a, b = runs[5.0], runs[0.5]
+    np.testing.assert_allclose(a["friction_force"], b["friction_force"])
+    acc = -0.05 * (2 * np.pi) ** 2 * np.sin(2 * np.pi * t)
+    inner = slice(10, -10)  # the ends' finite differences
+    # ΔI·ẍ, of amplitude 8.9 N·m; ẍ by finite differences, one sample (0.056 N·m of ΔI·jerk·dt) off
+    np.testing.assert_allclose((a["applied_force"] - b["applied_force"])[inner], 4.5 * acc[inner], atol=0.1)
+
+
 def test_cli_simulate_reads_only_the_columns_its_drive_uses(tmp_path, capsys):
     # a logged friction with a gap does not stop a simulation driven by the position; a dropout
     # in the position leaves its row out, said; a position that is mostly gaps stops it, in one
@@ -208,3 +233,13 @@ def test_cli_fit_names_a_missing_position_column_before_any_work(tmp_path, capsy
     lines = [ln for ln in err.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("error: ")
     assert "f.csv" in lines[0] and "position" in lines[0] and "--columns position=" in lines[0]
+
+
+def test_diagnose_says_the_effects_it_writes_without_naming_them():
+    from leuven_friction.app.cli import held_effects_said
+
+    written = [{"name": "presliding_range", "params": {"e": -0.42180995950209077}},
+               {"name": "time_drift", "params": {"t0": 3730.028, "b": -0.2578, "tau": 28.37}}]
+    said = held_effects_said(written, ["time_drift"])
+    assert said == "; also written, held beside them and not named: presliding_range (e = -0.422)"
+    assert held_effects_said(written[1:], ["time_drift"]) == ""
