@@ -4305,7 +4305,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                              + (", the transition curve's segments" if refit_curve else "")
                              + f" refitted by output error in {cmp_.space}"
                              + (f"; moved from held: {', '.join(f'{k} {a} → {b}' for k, (a, b) in moved.items())}"
-                                if moved else ""))
+                                if moved else "")
+                             # a user found the file's σ gone and nothing saying why
+                             + "; no σ is written for S(v), the transition curve, n or σ1: the fit's were of "
+                               "the values before this refit, and no new ones are computed")
         new_params = written_params.replace(
             effects=tuple(_clean_entry(e, cmp_) for e in final.entries), uncertainty=unc, provenance=prov)
     # the reversals as the softening named counts them (its own back-travel), else the comparison's

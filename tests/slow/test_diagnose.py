@@ -197,7 +197,11 @@ def test_the_model_written_from_a_fitted_file_holds_only_what_stayed_held(tmp_pa
     assert "position_ripple" in prov["diagnosis"] and "the S(v) levels" in prov["diagnosis"]
     moved = [k for k in held_before if k not in prov["held"]]
     assert "n" in moved and any(k.endswith(".Fs") for k in moved), prov
-    assert all(f"{k} " in prov["diagnosis"].split("moved from held:")[1] for k in moved), prov["diagnosis"]
+    assert all(f"{k} " in prov["diagnosis"].split("moved from held:")[1].split(";")[0] for k in moved), prov["diagnosis"]
+    # the σ the refit made stale are gone from the file, and the file says so
+    unc = yaml.safe_load(written.read_text())["uncertainty"]
+    assert not [k for k in unc if k.startswith(("stribeck.", "transition_curve")) or k in ("n", "sigma1")], unc
+    assert any(k.startswith("effects.") for k in unc) and "no σ is written for S(v)" in prov["diagnosis"]
     assert {k for k in held_before if k.endswith((".vs", ".delta", ".sigma2"))} <= set(prov["held"])
 
 
