@@ -839,12 +839,12 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     else:
         res.refinement = {"done": False, "reason": "skipped (--no-refine)"}
     # in the recordings' units (written into the parameters only below): a stage in m and N read "N*m"
-    if tfit is not None and (said := curve_coverage(res.params.replace(units=_units_of(recordings)),
-                                                    min(branch_ends, default=np.inf))):
+    in_units = res.params.replace(units=_units_of(recordings))
+    if tfit is not None and (said := curve_coverage(in_units, min(branch_ends, default=np.inf))):
         res.notes.append(said)  # of the curve written (the refinement moves its knots' F_d)
-    if tfit is not None and (said := curve_continued(res.params.replace(units=_units_of(recordings)))):
+    if tfit is not None and (said := curve_continued(in_units)):
         res.notes.append(said)
-    if said := direction_asymmetry(res.params.replace(units=_units_of(recordings))):
+    if said := direction_asymmetry(in_units):
         res.notes.append(said)
 
     cost = {}
@@ -911,6 +911,8 @@ def curve_coverage(p: FrictionParams, v_end: float) -> str:
             f"last segment's slope goes on (or, if that reaches the span only past {REACH_WITHIN * tc.z[-1]:.3g}, the slope that "
             f"reaches it there), stiffer than a curve bending into sliding, so wider presliding is not "
             f"estimated{ends}")
+
+
 ASYMMETRY_SIGMAS = 3.0  # sides' Coulomb levels whose sizes differ by more σ than this are said to
 
 
