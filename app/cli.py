@@ -196,7 +196,23 @@ def cmd_simulate(args) -> int:
     _write_table(_table([r], [params.model]), args.out)
     stages.done(f"wrote {args.out}")
     print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}{_units_said(params, rec)}")
+    if said := start_state_note(params.model):
+        print(f"  {said}")
     return 0
+
+
+def start_state_note(model: str) -> str:
+    """What a simulation along a recording does not know: the machine's history before its first
+    row. The model starts there with an empty memory (section III-B's stacks hold only the outer
+    loop, F_h = 0; LuGre's z = 0), the machine from wherever its last motion left it, so the two
+    may differ until the first gross sliding resets both (``diagnose`` compares from there on).
+    A static model holds no memory: "" for it."""
+    state = {"leuven": "F_h = 0, the memory holding only the outer loop", "lugre": "z = 0"}.get(model)
+    if state is None:
+        return ""
+    return (f"the model starts at the first row with an empty memory ({state}); the machine's history before the log is not "
+            f"in the file: until the first gross sliding the friction simulated may differ from the machine's by "
+            f"where that history left it (diagnose compares from there on)")
 
 
 def say_reading(rec) -> None:
@@ -219,6 +235,13 @@ def held_inertia_note(path: str | None, params, drive: str) -> str:
             f"says why): {what}; set this machine's inertia in the file")
 
 
+def units_said(rec_units: dict) -> str:
+    """A recording's units as a warning names them: its position's, and its force's where it has
+    a force or friction column (the loader has filled in SI for a header without units)."""
+    force = rec_units.get("force") or rec_units.get("friction")
+    return f"{rec_units.get('position')} and {force}" if force else f"{rec_units.get('position')} (no force column)"
+
+
 def default_params_warning(param_units: dict, rec_units: dict) -> str:
     """What simulating a recording without --params means: the paper's robot joint, whose
     numbers are another machine's — in other units too, when the recording's differ."""
@@ -227,9 +250,8 @@ def default_params_warning(param_units: dict, rec_units: dict) -> str:
     from ..identify.data import other_kind_of_machine
 
     if other_kind_of_machine(param_units, rec_units):
-        pu, ru = param_units.get("position"), rec_units.get("position")
-        line += (f"; its parameters are in {pu}, {param_units.get('force')}, the recording in {ru}, "
-                 f"{rec_units.get('force') or rec_units.get('friction') or '?'}: the friction is not of this scale")
+        line += (f"; its parameters are in {param_units.get('position')} and {param_units.get('force')}, the recording in "
+                 f"{units_said(rec_units)}: the friction is not of this scale")
     return line
 
 
@@ -245,9 +267,8 @@ def units_mismatch(path: str, params, rec) -> str | None:
         size = other_size_of_machine(params, rec)
         return None if size is None else (f"warning: {path}: {size}; what the data do not determine is taken from it "
                                            f"as it is (fit this recording without --params)")
-    pu, ru = param_units.get("position"), rec.units.get("position")
-    rf = rec.units.get("force") or rec.units.get("friction") or "?"
-    return (f"warning: {path} is in {pu} and {param_units.get('force')}, {rec.source} in {ru} and {rf}: parameters of "
+    return (f"warning: {path} is in {param_units.get('position')} and {param_units.get('force')}, {rec.source} in "
+            f"{units_said(rec.units)}: parameters of "
             f"another kind of machine are applied as they are (fit this recording, or write its units in its header)")
 
 

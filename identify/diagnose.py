@@ -4111,7 +4111,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         cmp_.notes.append(f"{' and '.join(friction_named)} named while no normal load is read (columns not read: "
                           f"{', '.join(map(str, load_like))}): friction that follows a load changed during the "
                           f"session is taken up by a friction effect in time or along the travel; if one of those "
-                          f"columns is that load, give it in N (--columns normal_load=<column>) and diagnose again")
+                          f"columns is that load, name it (--columns normal_load=<column>), as a force with "
+                          f"its unit in the header (N, kN, lbf …; not a mass), and diagnose again")
     sds, decided = rounds[-1]
     if "time_drift" in s.candidates and len(holds) >= 4 and abs(order.rho) < SPEED_ORDER_RHO:
         span = float(cmp_.time[allm][-1] - cmp_.time[allm][0]) if allm.any() else 0.0
@@ -4663,9 +4664,9 @@ def gap_by_regime(rec: Recording, params: FrictionParams) -> str:
     unit = params.units.get("force", "")
     parts = [f"{k} {_rms(r[w & m]):.3g}" for k, w in regime_masks(cmp_).items() if k != "all" and (w & m).any()]
     total = _rms(r[m])
-    return (f"RMS {total:.3g} {unit}" + (f" ({total / cmp_.noise:.1f} × the noise floor {cmp_.noise:.3g})"
+    return (f"RMS {total:.3g} {unit}" + (f" ({total / cmp_.noise:.1f} × the noise floor {cmp_.noise:.3g} {unit})"
                                          if cmp_.noise > 0 else "")
-            + f"; {', '.join(parts)} (from {float(cmp_.time[np.argmax(m)]):.4g} s on)")
+            + f"; per regime ({unit}): {', '.join(parts)} (from {float(cmp_.time[np.argmax(m)]):.4g} s on)")
 
 
 def friction_compared(rec: Recording, params: FrictionParams, cmp_: Comparison | None = None) -> FrictionCompared:

@@ -118,7 +118,7 @@ def test_the_cli_says_where_held_and_simulated_values_come_from(tmp_path, capsys
     assert main(["simulate", "--input", str(data), "--out", str(tmp_path / "s.csv")]) == 0
     err = capsys.readouterr().err
     assert "no --params: simulated with the built-in default" in err
-    assert "its parameters are in rad, N*m, the recording in m, N" in err
+    assert "its parameters are in rad and N*m, the recording in m and N" in err
 
 
 def test_no_branch_of_the_shipped_samples_counts_as_slid():
