@@ -360,7 +360,7 @@ def _assume_si(rec: "Recording", unitless: list) -> str:
     given = ", ".join(f"{rec.columns[s]} in {table[s]}" for s in unitless if s in table)
     time = ["time in s"] if "time" in unitless else []
     said = ", ".join(time + ([given] if given else []))
-    counts = _counts_hint(rec) if "position" in unitless else ""
+    counts = (_counts_hint(rec) or _speed_hint(rec, kind or "rotary")) if "position" in unitless else ""
     if kind:
         return f"no unit in the header of {said}: assumed SI, a {kind} machine's (as {why} say){counts}"
     return (f"no unit in the header of {said}: assumed SI, a rotary machine's (nothing says linear or rotary: "
@@ -380,6 +380,30 @@ def _counts_hint(rec: "Recording") -> str:
         return ""
     return (f"; its position holds only whole numbers over {np.ptp(finite):.0f} of them: if those are encoder "
             f"counts, write the size of one as its unit, e.g. '{rec.columns['position']} [0.01 mm]'")
+
+
+# Faster than machines of a kind move, read in that kind's SI unit: linear-motor axes reach a few
+# m/s, spindles ~2000 rad/s (19,000 rpm). Not a threshold of any method: only what a note says of
+# a position whose header gave no unit (a stage's µm read as metres moved at 10⁴ m/s).
+IMPLAUSIBLE_SPEED = {"linear": 20.0, "rotary": 2000.0}
+_SMALLER_UNITS = {"linear": "'position [mm]' or 'position [um]'", "rotary": "'position [deg]' or 'position [mrad]'"}
+
+
+def _speed_hint(rec: "Recording", kind: str) -> str:
+    """For a position read without a unit as SI: where its speed (99th percentile of the steps
+    over their times) is beyond IMPLAUSIBLE_SPEED for the kind of machine, what to write instead."""
+    x = np.asarray(rec.position, dtype=np.float64)
+    t = np.asarray(rec.time, dtype=np.float64)
+    dx, dt = np.diff(x), np.diff(t)
+    ok = np.isfinite(dx) & np.isfinite(dt) & (dt > 0)
+    if not ok.any():
+        return ""
+    speed = float(np.quantile(np.abs(dx[ok] / dt[ok]), 0.99))
+    if speed <= IMPLAUSIBLE_SPEED[kind]:
+        return ""
+    u = _SI_BY_KIND[kind]["position"]
+    return (f"; read as {u}, its position moves at {speed:.3g} {u}/s (99th percentile), faster than a {kind} "
+            f"machine moves: if it is in a smaller unit, write it in the header, e.g. {_SMALLER_UNITS[kind]}")
 
 
 def _split_header(name: str) -> tuple[str, str | None]:

@@ -459,3 +459,22 @@ def test_a_torque_constant_with_a_decimal_comma_reads_as_with_a_point(tmp_path):
     p.write_text(_csv(["time [s]", "position [m]", "Motorstrom [A]"], [t, x, f]))
     rec = load_recording(p, columns={"force": "Motorstrom [A]"}, units={"force": "5,9 N"})
     assert np.allclose(rec.force, 5.9 * f)
+
+
+def test_a_position_without_a_unit_moving_faster_than_machines_do_is_said_to_need_its_unit(tmp_path):
+    # a stage's position logged in µm (0.1 µm steps, a sine of 20 mm and 2 s: 63 mm/s at most)
+    # without a unit: read as metres, as the header says nothing, it moves at 6·10⁴ m/s, and the
+    # note says which unit to write; the same motion in metres says nothing of it
+    t = np.arange(4000) * 1e-3
+    x_m = 0.02 * np.sin(np.pi * t)
+    x_um = np.round(x_m * 1e7) / 10
+    f = np.sign(np.gradient(x_m)) * 3.0
+    p = tmp_path / "stage.csv"
+    p.write_text(_csv(["time", "position", "force"], [t, x_um, f]))
+    note = load_recording(p, units={"force": "N"}).units_assumed
+    import re
+
+    speed = float(re.search(r"moves at ([0-9.e+]+) m/s", note).group(1))
+    assert 0.95 * np.pi * 0.02e6 <= speed <= np.pi * 0.02e6 * 1.001 and "'position [um]'" in note, note
+    p.write_text(_csv(["time", "position", "force"], [t, x_m, f]))
+    assert "moves at" not in load_recording(p, units={"force": "N"}).units_assumed
