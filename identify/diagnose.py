@@ -4175,7 +4175,10 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # σ1 refits within a factor SIGMA1_REFIT_MAX of the file's (``refit_transition``): at that bound the
         # record wants it further, and the value written is a bound, not an estimate
         s1_ends = (params.sigma1 / SIGMA1_REFIT_MAX, params.sigma1 * SIGMA1_REFIT_MAX)
-        s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's: the record pushes it further)"
+        # the bound is on σ1 before the level g is baked in: the value said is g × that
+        at_level = f" before the level ×{final.g:.4g}" if abs(final.g - 1.0) > 5e-4 else ""
+        s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's{at_level}: the record pushes it "
+                    f"further)"
                     if _at_range_end(final_base.sigma1, s1_ends) else "")
         # n at an end of its refit range: the record asks for a shape beyond it, say which way
         n_bound = (f" (at the end of its range {N_REFIT[0]:g}–{N_REFIT[1]:g}: the record pushes it further, "

@@ -22,6 +22,10 @@ NAMES = ("Fs", "Fc", "vs", "delta", "sigma2")
 STRIBECK_MIN_LEVELS, STRIBECK_MIN_SPEEDS = 6, 4
 
 
+# a Coulomb + viscous fit whose slope came out negative, refitted as Coulomb alone (σ2 held at 0)
+COULOMB_SLOPE_HELD = "Coulomb (σ2 held at 0: a negative viscous slope)"
+
+
 @dataclass
 class Levels:
     """Constant-velocity levels: mean velocity, mean friction, variance of that mean; and how
@@ -219,7 +223,7 @@ class SideDecision:
 
     fit: SideFit | None
     held: dict  # name -> reason
-    model: str  # "Stribeck + viscous", "Stribeck + viscous (δ held)" (or "(δ from the … side)"), "Stribeck (σ2 held at 0)", "Coulomb + viscous", "Coulomb", "held"
+    model: str  # "Stribeck + viscous", "Stribeck + viscous (δ held)" (or "(δ from the … side)"), "Stribeck (σ2 held at 0)", "Coulomb + viscous", COULOMB_SLOPE_HELD, "Coulomb", "held"
 
 
 def _trouble(fit: SideFit, names) -> list:
@@ -358,6 +362,8 @@ def fit_side_honest(levels: Levels, sign: int, *, delta_hold: float = 1.0) -> Si
         fit.values["vs"], fit.values["delta"] = vs_hold, delta_hold
         if any("sigma2 came out negative" in m for m in fit.notes):
             held["sigma2"] = "the levels give a negative viscous slope (not identifiable): held at 0"
+            # the form fitted is then Coulomb alone (one parameter: the χ²'s degrees of freedom)
+            return SideDecision(fit, held, COULOMB_SLOPE_HELD)
         return SideDecision(fit, held, "Coulomb + viscous")
     fit = _coulomb_viscous(levels, sign, viscous=False)
     fit.values["vs"], fit.values["delta"] = vs_hold, delta_hold
@@ -395,7 +401,7 @@ def fit_sides_honest(levels: Levels) -> dict:
                 or distinct_speeds(a) < STRIBECK_MIN_SPEEDS:
             continue
         short = len(a) == STRIBECK_MIN_LEVELS - 1
-        misfit = out[side].model == "Coulomb + viscous" and len(a) >= STRIBECK_MIN_LEVELS and misfits(out[side].fit)
+        misfit = out[side].model in ("Coulomb + viscous", COULOMB_SLOPE_HELD) and len(a) >= STRIBECK_MIN_LEVELS and misfits(out[side].fit)
         if not (short or misfit):
             continue
         d, sd = other.fit.values["delta"], other.fit.stderr["delta"]

@@ -527,7 +527,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                       "robust_scale": ROBUST_SCALE,
                       "what": ("S(v), transition curve" if motion and vec.has_tc else "S(v) (transition curve from the ML step)"
                                if motion else "transition curve only (S(v) from the Markov step)")
-                              + "; weighted residuals (1 = the noise floor); per experiment in data units: "
+                              + f"; weighted residuals (1 = the noise floor); per experiment in {p.units.get('force', 'N')}: "
                               + "; ".join(f"{k}: {before[k]:.3g} -> {after[k]:.3g}" for k in before)
                               + ("; continued once past the evaluation budget" if continued else ""),
                       "per_experiment_before": before, "per_experiment_after": after, "evaluations": int(fit.nfev),

@@ -388,7 +388,7 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
             # a load that varies through the session (a schedule, a drifting contact): keeping
             # only its plateau would leave too little to fit; the base model then averages over
             # the loads, and `diagnose` tells whether the friction follows them
-            notes.append(f"normal load: no plateau (only {100 * usable.mean():.0f} % of the samples within "
+            notes.append(f"normal load: not held at one plateau (only {100 * usable.mean():.0f} % of the samples within "
                          f"{th.load_tol:.3g} {lu} of its 95th percentile {N0:.4g} {lu}; it ranges "
                          f"{np.min(rec.normal_load):.4g}–{np.max(rec.normal_load):.4g} {lu}): every sample is used, "
                          f"S(v) and the transition curve average over the loads (run diagnose to see whether "

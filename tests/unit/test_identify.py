@@ -448,3 +448,18 @@ def test_a_curve_the_model_continues_past_its_knots_is_said():
     said = curve_continued(flat)
     # the knot the model adds: 20 times the last z, at the span 99
     assert "(0.004, 99)" in said and "60 → 60 N*m" in said and "not an estimate" in said, said
+
+
+def test_a_negative_viscous_slope_is_said_as_coulomb_alone_with_its_degrees_of_freedom():
+    # three speeds whose friction falls with speed beyond the noise (a load that changed between
+    # them, not a viscous term): σ2 is held at 0 and the form fitted is Coulomb alone, one
+    # parameter for the levels, as the fit report's χ² line names it
+    from leuven_friction.identify.markov import COULOMB_SLOPE_HELD, fit_side_honest
+
+    v = np.array([0.001, 0.01, 0.1, 0.001, 0.01, 0.1])
+    F = np.array([1.0, 0.9, 0.8, 1.01, 0.91, 0.79])
+    levels = Levels(v, F, np.full(6, 1e-4), np.full(6, 2000.0))
+    dec = fit_side_honest(levels, +1)
+    assert dec.model == COULOMB_SLOPE_HELD and "sigma2" in dec.held and dec.fit.values["sigma2"] == 0
+    assert dec.fit.dof == len(v) - 1
+    assert dec.fit.values["Fc"] == pytest.approx(F.mean(), rel=1e-9)  # equal weights: the mean level
