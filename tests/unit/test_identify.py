@@ -353,14 +353,17 @@ def test_a_side_one_level_short_takes_delta_from_the_other_and_follows_its_dip()
     # eight positive levels determine δ; five negative ones (one short of the Stribeck form) with
     # the same dip: held at the positive side's δ, the rest fitted, the dip followed within the
     # noise — where Coulomb + viscous misfits them by hundreds of χ² (a tendon joint made apart)
-    from leuven_friction.identify.markov import fit_side_honest, fit_sides_honest, stribeck_plus_viscous
+    from leuven_friction.identify.markov import (COULOMB_SLOPE_HELD, fit_side_honest, fit_sides_honest,
+                                                 stribeck_plus_viscous)
 
     rng = np.random.default_rng(3)
     v = np.concatenate([np.geomspace(0.02, 0.6, 8), -np.array([0.03, 0.06, 0.12, 0.25, 0.5])])
     F, var = _lorentzian_levels(v, rng)
     levels = Levels(v, F, var, np.full(len(v), 2000.0))
     alone = fit_side_honest(levels, -1)
-    assert alone.model == "Coulomb + viscous" and alone.fit.chi2 > 100 * alone.fit.dof
+    # alone, the side's five levels fall with speed through the dip: their viscous slope comes out
+    # negative, σ2 is held at 0, and Coulomb alone (one parameter, 4 degrees of freedom) misfits
+    assert alone.model == COULOMB_SLOPE_HELD and alone.fit.dof == 4 and alone.fit.chi2 > 100 * alone.fit.dof
     dec = fit_sides_honest(levels)
     neg, pos = dec["negative"], dec["positive"]
     assert neg.model == "Stribeck + viscous (δ from the positive side)" and set(neg.held) == {"delta"}
