@@ -305,6 +305,16 @@ def sigma1_at_damping_ratio(curve: TransitionCurve, inertia: float, zeta: float 
 ROBUST_SCALE = 3.0  # soft L1 beyond this many noise σ (the weighted residuals' unit), in the refinement's least squares
 
 
+def per_experiment_units(exps, units: dict) -> str:
+    """The units of the per-experiment RMS the refinement reports: friction (a motion-driven
+    experiment) in the force unit, position (a force-driven one, output error) in the position
+    unit — the recordings' SI, whatever their headers were in."""
+    kinds = {e.kind for e in exps}
+    said = ([f"friction in {units.get('force', 'N')}"] if "motion" in kinds else []) + \
+        ([f"position in {units.get('position', 'm')}"] if kinds - {"motion"} else [])
+    return ", ".join(said)
+
+
 def _cost(r: np.ndarray, loss: str) -> float:
     """The least squares' cost of residuals ``r`` (scipy's: ½ Σ ρ(r²/f²)·f², f = ROBUST_SCALE)."""
     if loss == "soft_l1":
@@ -527,7 +537,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                       "robust_scale": ROBUST_SCALE,
                       "what": ("S(v), transition curve" if motion and vec.has_tc else "S(v) (transition curve from the ML step)"
                                if motion else "transition curve only (S(v) from the Markov step)")
-                              + f"; weighted residuals (1 = the noise floor); per experiment in {p.units.get('force', 'N')}: "
+                              + f"; weighted residuals (1 = the noise floor); per experiment ({per_experiment_units(exps, p.units)}): "
                               + "; ".join(f"{k}: {before[k]:.3g} -> {after[k]:.3g}" for k in before)
                               + ("; continued once past the evaluation budget" if continued else ""),
                       "per_experiment_before": before, "per_experiment_after": after, "evaluations": int(fit.nfev),

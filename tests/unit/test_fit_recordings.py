@@ -902,3 +902,20 @@ def test_the_report_shows_each_level_beside_the_curve_written(tmp_path):
     assert np.all(np.abs(f - (2.0 * np.tanh(v / 1e-3) + 5.0 * v)) < 4 * sd + 1e-4 * np.abs(f)), rows
     assert np.all(np.abs(off) < 4), rows  # Coulomb + viscous written within the levels' noise
     assert np.all(np.diff(v) >= 0)  # in order of speed
+
+
+def test_the_refinement_says_each_experiments_rms_in_the_unit_of_what_it_compares(tmp_path, capsys):
+    # a force-driven recording is refined by output error in position (rad for the shipped joint),
+    # a motion-driven one in friction: the report's per-experiment RMS names the unit of each
+    from types import SimpleNamespace
+
+    from leuven_friction.app.cli import main
+    from leuven_friction.identify.refine import per_experiment_units
+
+    units = {"position": "m", "force": "N"}
+    both = [SimpleNamespace(kind="motion"), SimpleNamespace(kind="force")]
+    assert per_experiment_units(both, units) == "friction in N, position in m"
+    assert per_experiment_units(both[:1], units) == "friction in N"
+    assert main(["fit", "sample:presliding_encoder", "--out", str(tmp_path / "p.yaml")]) == 0
+    out = capsys.readouterr().out
+    assert "per experiment (position in rad): " in out and "data units" not in out, out
