@@ -212,7 +212,8 @@ def start_state_note(model: str) -> str:
         return ""
     return (f"the model starts at the first row with an empty memory ({state}); the machine's history before the log is not "
             f"in the file: until the first gross sliding the friction simulated may differ from the machine's by "
-            f"where that history left it (diagnose compares from there on)")
+            f"where that history left it (diagnose compares from the first reversal on, a constant of its own "
+            f"left free until that sliding)")
 
 
 def say_reading(rec) -> None:
@@ -236,10 +237,11 @@ def held_inertia_note(path: str | None, params, drive: str) -> str:
 
 
 def units_said(rec_units: dict) -> str:
-    """A recording's units as a warning names them: its position's, and its force's where it has
-    a force or friction column (the loader has filled in SI for a header without units)."""
+    """A recording's units as a warning names them: its position's, and its force's where a force
+    or friction column was read (the loader fills in SI for a header without units; a simulation
+    driven by the position reads no force column, whether the file has one or not)."""
     force = rec_units.get("force") or rec_units.get("friction")
-    return f"{rec_units.get('position')} and {force}" if force else f"{rec_units.get('position')} (no force column)"
+    return f"{rec_units.get('position')} and {force}" if force else f"{rec_units.get('position')} (no force read)"
 
 
 def default_params_warning(param_units: dict, rec_units: dict) -> str:

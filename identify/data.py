@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from .columns import ALIASES, COF_NAMES, UNITS_ACCEPTED
-from .errors import DataError
+from .errors import DataError, IdentificationError
 
 SIGNALS = ("time", "position", "force", "velocity", "friction", "normal_load", "temperature")
 
@@ -360,7 +360,7 @@ def _assume_si(rec: "Recording", unitless: list) -> str:
     given = ", ".join(f"{rec.columns[s]} in {table[s]}" for s in unitless if s in table)
     time = ["time in s"] if "time" in unitless else []
     said = ", ".join(time + ([given] if given else []))
-    counts = (_counts_hint(rec) or _speed_hint(rec, kind or "rotary")) if "position" in unitless else ""
+    counts = (_counts_hint(rec) or _speed_hint(rec, kind)) if "position" in unitless else ""
     if kind:
         return f"no unit in the header of {said}: assumed SI, a {kind} machine's (as {why} say){counts}"
     return (f"no unit in the header of {said}: assumed SI, a rotary machine's (nothing says linear or rotary: "
@@ -386,24 +386,32 @@ def _counts_hint(rec: "Recording") -> str:
 # m/s, spindles ~2000 rad/s (19,000 rpm). Not a threshold of any method: only what a note says of
 # a position whose header gave no unit (a stage's µm read as metres moved at 10⁴ m/s).
 IMPLAUSIBLE_SPEED = {"linear": 20.0, "rotary": 2000.0}
-_SMALLER_UNITS = {"linear": "'position [mm]' or 'position [um]'", "rotary": "'position [deg]' or 'position [mrad]'"}
+_SMALLER_UNITS = {"linear": ("mm", "um"), "rotary": ("deg", "mrad")}
+SPEED_SPAN = 10  # samples the speed is taken over: a position updated less often than logged, or a jittery clock, is not read as fast
 
 
-def _speed_hint(rec: "Recording", kind: str) -> str:
-    """For a position read without a unit as SI: where its speed (99th percentile of the steps
-    over their times) is beyond IMPLAUSIBLE_SPEED for the kind of machine, what to write instead."""
+def _speed_hint(rec: "Recording", kind: str | None) -> str:
+    """For a position read without a unit as SI (``kind`` None: a rotary machine's, nothing said
+    which): where its speed (99th percentile over SPEED_SPAN samples) is beyond
+    IMPLAUSIBLE_SPEED for the kind of machine, what to write instead."""
     x = np.asarray(rec.position, dtype=np.float64)
     t = np.asarray(rec.time, dtype=np.float64)
-    dx, dt = np.diff(x), np.diff(t)
+    k = min(SPEED_SPAN, len(x) - 1)
+    if k < 1:
+        return ""
+    dx, dt = x[k:] - x[:-k], t[k:] - t[:-k]
     ok = np.isfinite(dx) & np.isfinite(dt) & (dt > 0)
     if not ok.any():
         return ""
     speed = float(np.quantile(np.abs(dx[ok] / dt[ok]), 0.99))
-    if speed <= IMPLAUSIBLE_SPEED[kind]:
+    if speed <= IMPLAUSIBLE_SPEED[kind or "rotary"]:
         return ""
-    u = _SI_BY_KIND[kind]["position"]
-    return (f"; read as {u}, its position moves at {speed:.3g} {u}/s (99th percentile), faster than a {kind} "
-            f"machine moves: if it is in a smaller unit, write it in the header, e.g. {_SMALLER_UNITS[kind]}")
+    u = _SI_BY_KIND[kind or "rotary"]["position"]
+    col = rec.columns["position"]
+    units = _SMALLER_UNITS[kind] if kind else _SMALLER_UNITS["linear"] + _SMALLER_UNITS["rotary"]
+    return (f"; read as {u}, its position moves at {speed:.3g} {u}/s (99th percentile), faster than "
+            f"{f'a {kind} machine moves' if kind else 'machines move'}: if it is in a smaller unit, write it in the header, "
+            f"e.g. " + " or ".join(f"'{col} [{w}]'" for w in units))
 
 
 def _split_header(name: str) -> tuple[str, str | None]:
@@ -949,6 +957,21 @@ def turn_wraps(angle: np.ndarray) -> np.ndarray:
         return np.zeros(0, dtype=int)
     off = d[big] - 2.0 * np.pi * np.round(d[big] / (2.0 * np.pi))
     return big if np.all(np.abs(off) < 0.2 * np.pi) else np.zeros(0, dtype=int)
+
+
+def units_of_recordings(recordings) -> dict:
+    """The units a parameter set fitted to ``recordings`` is in: theirs as read (SI of their kind,
+    whatever their headers said; the force's, else the friction's), one kind of machine at a time."""
+    units = None
+    for r in recordings:
+        u = {"position": r.units.get("position", "rad"), "force": r.units.get("force", r.units.get("friction", "N*m")),
+             "time": "s"}
+        if units is None:
+            units = u
+        elif u["position"] != units["position"]:
+            raise IdentificationError(f"{r.source}: position in {u['position']} but another file has {units['position']}: "
+                                      f"fit one kind of machine at a time")
+    return units or {"position": "rad", "force": "N*m", "time": "s"}
 
 
 def other_kind_of_machine(param_units, rec_units) -> bool:

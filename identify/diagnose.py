@@ -4168,6 +4168,8 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                              "worse: the file's kept" if final_reid.gap_new >= final_reid.gap_file else
                              f"not clearly better (under {STEADY_MIN_GAIN:.0%} less, or the file's within "
                              f"{STEADY_MISFIT:g} noise sds): the file's kept"))
+    # σ1's refit bound is on it before the level g is baked in: the value said and written is g × that
+    at_level = f" before the level ×{final.g:.4g}" if abs(final.g - 1.0) > 5e-4 else ""
     if params.model == "leuven":
         # the values as written: the common level g is baked into the forces and σ1 (``bake``)
         levels = [final.g * getattr(getattr(final_base.stribeck, sd), k) / getattr(getattr(params.stribeck, sd), k)
@@ -4175,8 +4177,6 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # σ1 refits within a factor SIGMA1_REFIT_MAX of the file's (``refit_transition``): at that bound the
         # record wants it further, and the value written is a bound, not an estimate
         s1_ends = (params.sigma1 / SIGMA1_REFIT_MAX, params.sigma1 * SIGMA1_REFIT_MAX)
-        # the bound is on σ1 before the level g is baked in: the value said is g × that
-        at_level = f" before the level ×{final.g:.4g}" if abs(final.g - 1.0) > 5e-4 else ""
         s1_bound = (f" (at its bound, a factor {SIGMA1_REFIT_MAX:g} from the file's{at_level}: the record pushes it "
                     f"further)"
                     if _at_range_end(final_base.sigma1, s1_ends) else "")
@@ -4286,7 +4286,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         # n and σ1 where the refit left them at an end of its range: a bound the record pushed them
         # to, not an estimate (no σ is written for either)
         ends = ({"n": (final_base.n, N_REFIT, f"{N_REFIT[0]:g}–{N_REFIT[1]:g}"),
-                 "sigma1": (final_base.sigma1, s1_ends, f"a factor {SIGMA1_REFIT_MAX:g} either way from the file's")}
+                 "sigma1": (final_base.sigma1, s1_ends, f"a factor {SIGMA1_REFIT_MAX:g} either way from the file's{at_level}")}
                 if params.model == "leuven" else {})
         at_end = {k: (f"at the end of the diagnosis's refit range ({said}): the record pushes it further (the "
                       f"contact's shape, not the data's noise), so the value written is a bound, not an estimate")

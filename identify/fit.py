@@ -24,7 +24,7 @@ from ..model import FrictionParams, Stribeck, StribeckSide, TransitionCurve, def
 from ..model.params import REACH_WITHIN, get_value, reaching_knots, spec_of
 from ..model.simulate import stribeck_curve
 
-from .data import Recording
+from .data import Recording, units_of_recordings
 from .errors import IdentificationError
 from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfits,
                      stribeck_plus_viscous)
@@ -471,19 +471,6 @@ def check_knots(knots, datasets) -> np.ndarray:
     return z
 
 
-def _units_of(recordings) -> dict:
-    units = None
-    for r in recordings:
-        u = {"position": r.units.get("position", "rad"), "force": r.units.get("force", r.units.get("friction", "N*m")),
-             "time": "s"}
-        if units is None:
-            units = u
-        elif u["position"] != units["position"]:
-            raise IdentificationError(f"{r.source}: position in {u['position']} but another file has {units['position']}: "
-                                      f"fit one kind of machine at a time")
-    return units or {"position": "rad", "force": "N*m", "time": "s"}
-
-
 @one_blas_thread
 def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None = None, knots=None,
                    n: float = 7.0, fit_n: bool = False, progress=None, thresholds: dict | None = None,
@@ -754,7 +741,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         # a curve kept from another machine beside this fit's F_s (a valve's 539 N·m beside the
         # paper's curve topping at 100 N·m was written unsaid, which `diagnose` then warned of):
         # said as ``curve_coverage`` says a fitted curve that stops short
-        short = curve_coverage(p.replace(units=_units_of(recordings)), math.inf)  # in the recordings' units
+        short = curve_coverage(p.replace(units=units_of_recordings(recordings)), math.inf)  # in the recordings' units
         under = (f"; {short.removeprefix('transition curve: ')} (presliding recorded — slow force ramps, or small "
                  f"reversals of a motion with measured friction — would set this machine's)" if short else "")
         held["transition_curve"] = f"{why_curve}: kept {start}{under}"
@@ -839,7 +826,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     else:
         res.refinement = {"done": False, "reason": "skipped (--no-refine)"}
     # in the recordings' units (written into the parameters only below): a stage in m and N read "N*m"
-    in_units = res.params.replace(units=_units_of(recordings))
+    in_units = res.params.replace(units=units_of_recordings(recordings))
     if tfit is not None and (said := curve_coverage(in_units, min(branch_ends, default=np.inf))):
         res.notes.append(said)  # of the curve written (the refinement moves its knots' F_d)
     if tfit is not None and (said := curve_continued(in_units)):
@@ -866,7 +853,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     }
     say(1.0, "done")
     res.params = res.params.replace(uncertainty={**unc, **res.params.uncertainty} if res.refinement.get("done") else unc,
-                                    provenance=prov, units=_units_of(recordings)).validate()
+                                    provenance=prov, units=units_of_recordings(recordings)).validate()
     return res
 
 

@@ -413,8 +413,8 @@ def fit_sides_honest(levels: Levels) -> dict:
             continue
         word = "negative" if sign > 0 else "positive"
         said = (f"{len(a)} levels on this side do not determine it beside F_s, F_c, v_s and σ2" if short else
-                f"this side's own Stribeck fit put fewer than two of its {len(a)} levels below its v_s, and Coulomb + "
-                f"viscous misfits them (χ² {out[side].fit.chi2:.3g} for {out[side].fit.dof} degrees of freedom, "
+                f"this side's own Stribeck fit put fewer than two of its {len(a)} levels below its v_s, and "
+                f"{'Coulomb alone' if out[side].model == COULOMB_SLOPE_HELD else 'Coulomb + viscous'} misfits them (χ² {out[side].fit.chi2:.3g} for {out[side].fit.dof} degrees of freedom, "
                 f"{fit.chi2:.3g} with this δ)")
         out[side] = SideDecision(fit, {"delta": (f"{said}: held at the {word} side's {d:.3g} ± {sd:.2g}, identified there "
                                                  f"(the σ of the rest include that ±σ)")},

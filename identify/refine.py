@@ -32,6 +32,7 @@ from scipy.optimize import least_squares
 from scipy.signal import savgol_filter
 
 from ..model import SignalError, Stribeck, StribeckSide, TransitionCurve, simulate_displacement, simulate_force
+from .data import units_of_recordings
 from .markov import NAMES
 from .mle import Quantized
 from .segment import Prepared, turning_points, moving_average
@@ -308,7 +309,8 @@ ROBUST_SCALE = 3.0  # soft L1 beyond this many noise σ (the weighted residuals'
 def per_experiment_units(exps, units: dict) -> str:
     """The units of the per-experiment RMS the refinement reports: friction (a motion-driven
     experiment) in the force unit, position (a force-driven one, output error) in the position
-    unit — the recordings' SI, whatever their headers were in."""
+    unit — ``units`` the recordings' (``units_of_recordings``), not the starting parameters',
+    which are the paper's joint's when a fit starts without a file."""
     kinds = {e.kind for e in exps}
     said = ([f"friction in {units.get('force', 'N')}"] if "motion" in kinds else []) + \
         ([f"position in {units.get('position', 'm')}"] if kinds - {"motion"} else [])
@@ -537,7 +539,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                       "robust_scale": ROBUST_SCALE,
                       "what": ("S(v), transition curve" if motion and vec.has_tc else "S(v) (transition curve from the ML step)"
                                if motion else "transition curve only (S(v) from the Markov step)")
-                              + f"; weighted residuals (1 = the noise floor); per experiment ({per_experiment_units(exps, p.units)}): "
+                              + f"; weighted residuals (1 = the noise floor); per experiment ({per_experiment_units(exps, units_of_recordings([pr.rec for pr in preps]))}): "
                               + "; ".join(f"{k}: {before[k]:.3g} -> {after[k]:.3g}" for k in before)
                               + ("; continued once past the evaluation budget" if continued else ""),
                       "per_experiment_before": before, "per_experiment_after": after, "evaluations": int(fit.nfev),

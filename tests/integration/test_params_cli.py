@@ -245,15 +245,15 @@ def test_diagnose_says_the_effects_it_writes_without_naming_them():
     assert held_effects_said(written[1:], ["time_drift"]) == ""
 
 
-def test_a_recording_without_a_force_column_is_said_so_beside_the_default_parameters(tmp_path, capsys):
+def test_a_simulation_that_reads_no_force_says_so_beside_the_default_parameters(tmp_path, capsys):
     # a position-only recording in mm simulated with the paper's joint (rad, N·m): the warning
-    # names the recording's units as read, and says there is no force column, not a "?"
+    # names the recording's units as read, and says no force was read, not a "?"
     rec = tmp_path / "pos.csv"
     t = np.arange(2000) * 1e-3
     pd.DataFrame({"time [s]": t, "position [mm]": np.sin(t)}).to_csv(rec, index=False)
     rc, out, err = cli(capsys, "simulate", "--input", rec, "--out", tmp_path / "s.csv")
     assert rc == 0
-    assert "its parameters are in rad and N*m, the recording in m (no force column)" in err
+    assert "its parameters are in rad and N*m, the recording in m (no force read)" in err
     assert "?" not in err
     # the memory the model starts with is said, where the model has one; a static model has none
     assert "starts at the first row with an empty memory (F_h = 0" in out and "until the first gross sliding" in out

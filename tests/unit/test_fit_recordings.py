@@ -919,3 +919,16 @@ def test_the_refinement_says_each_experiments_rms_in_the_unit_of_what_it_compare
     assert main(["fit", "sample:presliding_encoder", "--out", str(tmp_path / "p.yaml")]) == 0
     out = capsys.readouterr().out
     assert "per experiment (position in rad): " in out and "data units" not in out, out
+    # the same numbers as a linear stage's, logged in mm and N: said in the recording's m, not in
+    # the rad of the paper's joint the fit starts from without --params
+    import pandas as pd
+
+    from pathlib import Path
+
+    df = pd.read_csv(Path(__file__).parents[2] / "sample_data" / "presliding_encoder.csv")
+    stage = tmp_path / "stage.csv"
+    pd.DataFrame({"t [s]": df["t"], "x [mm]": 1e3 * df["q"], "F [N]": df["tau"]}).to_csv(stage, index=False)
+    assert main(["fit", str(stage), "--columns", "time=t [s],position=x [mm],force=F [N]",
+                 "--out", str(tmp_path / "s.yaml")]) == 0
+    out = capsys.readouterr().out
+    assert "per experiment (position in m): " in out and "rad" not in out.split("per experiment (")[1][:20], out

@@ -478,3 +478,8 @@ def test_a_position_without_a_unit_moving_faster_than_machines_do_is_said_to_nee
     assert 0.95 * np.pi * 0.02e6 <= speed <= np.pi * 0.02e6 * 1.001 and "'position [um]'" in note, note
     p.write_text(_csv(["time", "position", "force"], [t, x_m, f]))
     assert "moves at" not in load_recording(p, units={"force": "N"}).units_assumed
+    # nothing saying linear or rotary (read as rad): the units of both kinds are offered
+    p.write_text(_csv(["time", "position", "friction"], [t, x_um, f]))
+    note = load_recording(p).units_assumed
+    assert "rad/s (99th percentile), faster than machines move" in note, note
+    assert "'position [um]'" in note and "'position [mrad]'" in note, note
