@@ -205,7 +205,8 @@ def start_state_note(model: str) -> str:
     """What a simulation along a recording does not know: the machine's history before its first
     row. The model starts there with an empty memory (section III-B's stacks hold only the outer
     loop, F_h = 0; LuGre's z = 0), the machine from wherever its last motion left it, so the two
-    may differ until the first gross sliding resets both (``diagnose`` compares from there on).
+    may differ until the first gross sliding resets both (``diagnose``, comparing friction, starts at the first
+    reversal and leaves a constant free until then: ``identify.diagnose.initial_memory``).
     A static model holds no memory: "" for it."""
     state = {"leuven": "F_h = 0, the memory holding only the outer loop", "lugre": "z = 0"}.get(model)
     if state is None:

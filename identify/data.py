@@ -404,9 +404,10 @@ def _speed_hint(rec: "Recording", kind: str | None) -> str:
     if not ok.any():
         return ""
     speed = float(np.quantile(np.abs(dx[ok] / dt[ok]), 0.99))
-    if speed <= IMPLAUSIBLE_SPEED[kind or "rotary"]:
+    read_as = kind or "rotary"  # what _assume_si took where nothing says
+    if speed <= IMPLAUSIBLE_SPEED[read_as]:
         return ""
-    u = _SI_BY_KIND[kind or "rotary"]["position"]
+    u = _SI_BY_KIND[read_as]["position"]
     col = rec.columns["position"]
     units = _SMALLER_UNITS[kind] if kind else _SMALLER_UNITS["linear"] + _SMALLER_UNITS["rotary"]
     return (f"; read as {u}, its position moves at {speed:.3g} {u}/s (99th percentile), faster than "

@@ -826,7 +826,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     else:
         res.refinement = {"done": False, "reason": "skipped (--no-refine)"}
     # in the recordings' units (written into the parameters only below): a stage in m and N read "N*m"
-    in_units = res.params.replace(units=units_of_recordings(recordings))
+    units = units_of_recordings(recordings)
+    in_units = res.params.replace(units=units)
     if tfit is not None and (said := curve_coverage(in_units, min(branch_ends, default=np.inf))):
         res.notes.append(said)  # of the curve written (the refinement moves its knots' F_d)
     if tfit is not None and (said := curve_continued(in_units)):
@@ -853,7 +854,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     }
     say(1.0, "done")
     res.params = res.params.replace(uncertainty={**unc, **res.params.uncertainty} if res.refinement.get("done") else unc,
-                                    provenance=prov, units=units_of_recordings(recordings)).validate()
+                                    provenance=prov, units=units).validate()
     return res
 
 

@@ -401,7 +401,8 @@ def fit_sides_honest(levels: Levels) -> dict:
                 or distinct_speeds(a) < STRIBECK_MIN_SPEEDS:
             continue
         short = len(a) == STRIBECK_MIN_LEVELS - 1
-        misfit = out[side].model in ("Coulomb + viscous", COULOMB_SLOPE_HELD) and len(a) >= STRIBECK_MIN_LEVELS and misfits(out[side].fit)
+        misfit = (out[side].model in ("Coulomb + viscous", COULOMB_SLOPE_HELD) and len(a) >= STRIBECK_MIN_LEVELS
+                  and misfits(out[side].fit))
         if not (short or misfit):
             continue
         d, sd = other.fit.values["delta"], other.fit.stderr["delta"]
@@ -412,9 +413,10 @@ def fit_sides_honest(levels: Levels) -> dict:
         if misfit and fit.chi2 >= out[side].fit.chi2:
             continue
         word = "negative" if sign > 0 else "positive"
+        form = "Coulomb alone" if out[side].model == COULOMB_SLOPE_HELD else "Coulomb + viscous"
         said = (f"{len(a)} levels on this side do not determine it beside F_s, F_c, v_s and σ2" if short else
-                f"this side's own Stribeck fit put fewer than two of its {len(a)} levels below its v_s, and "
-                f"{'Coulomb alone' if out[side].model == COULOMB_SLOPE_HELD else 'Coulomb + viscous'} misfits them (χ² {out[side].fit.chi2:.3g} for {out[side].fit.dof} degrees of freedom, "
+                f"this side's own Stribeck fit put fewer than two of its {len(a)} levels below its v_s, and {form} "
+                f"misfits them (χ² {out[side].fit.chi2:.3g} for {out[side].fit.dof} degrees of freedom, "
                 f"{fit.chi2:.3g} with this δ)")
         out[side] = SideDecision(fit, {"delta": (f"{said}: held at the {word} side's {d:.3g} ± {sd:.2g}, identified there "
                                                  f"(the σ of the rest include that ±σ)")},

@@ -532,6 +532,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     res.params = p.replace(uncertainty=unc)
     b_all = float(np.sqrt(np.mean(r0 ** 2)))
     a_all = float(np.sqrt(np.mean(fit.fun ** 2)))
+    exp_units = per_experiment_units(exps, units_of_recordings([pr.rec for pr in preps]))
     res.refinement = {"done": True, "rms_before": b_all, "rms_after": a_all, "chi2_reduced": chi2_red,
                       # what decided (``_lowered_enough``): the plain RMS above can rise where a few
                       # samples grow, the robust cost falling (a tribometer made apart: 81.0 → 83.7, kept)
@@ -539,7 +540,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
                       "robust_scale": ROBUST_SCALE,
                       "what": ("S(v), transition curve" if motion and vec.has_tc else "S(v) (transition curve from the ML step)"
                                if motion else "transition curve only (S(v) from the Markov step)")
-                              + f"; weighted residuals (1 = the noise floor); per experiment ({per_experiment_units(exps, units_of_recordings([pr.rec for pr in preps]))}): "
+                              + f"; weighted residuals (1 = the noise floor); per experiment ({exp_units}): "
                               + "; ".join(f"{k}: {before[k]:.3g} -> {after[k]:.3g}" for k in before)
                               + ("; continued once past the evaluation budget" if continued else ""),
                       "per_experiment_before": before, "per_experiment_after": after, "evaluations": int(fit.nfev),
