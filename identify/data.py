@@ -756,7 +756,8 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             known = unit_of(unit, sig) if unit is not None and sig != "temperature" else None
             if known is not None and known[1] in SI_OF[sig]:
                 rec.units[sig] = known[1]
-            notes.append(f"{col}: taken as {sig}, not used here: not read")
+            notes.append(f"{col}: taken as {sig}" + (" with its sign turned, as asked" if sig in negated else "")
+                         + "; this command does not use it, so its values are not read")
             continue
         raw = df[col]
         values = numbers_of(raw, df.attrs.get("decimal", "."))

@@ -26,7 +26,7 @@ from ..model.simulate import stribeck_curve
 
 from .data import Recording, units_of_recordings
 from .errors import IdentificationError
-from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfits,
+from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfit_scale, misfits,
                      stribeck_plus_viscous)
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, beyond_levels,
@@ -781,20 +781,26 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
 
     unc = {} if inertia_sd is None else {"inertia": inertia_sd}
+    widened = {}  # "stribeck.<side>.<name>" -> √(χ²/dof) its σ were widened by
     for side, dec in decisions.items():
         if dec.fit is not None:
+            # where the form misfits its levels (slow holds that stick and slip, a drift or a load
+            # along the sweep, a contact whose S(v) is not eq. (7)'s shape), the noise's σ would
+            # claim what the form does not give: they are widened by √(χ²/dof)
+            scale = misfit_scale(dec.fit)
             for k in NAMES:
                 path = f"stribeck.{side}.{k}"
                 if path not in held:
-                    unc[path] = dec.fit.stderr[k]
+                    unc[path] = dec.fit.stderr[k] * scale
+                    if scale > 1.0:
+                        widened[path] = scale
             notes.extend(f"{side}: {m}" for m in dec.fit.notes)
             notes.append(f"{side} side: {dec.model}")
-            if misfits(dec.fit):
-                # the σ above are those of a form that fits its levels to their noise; say when
-                # it does not (slow holds that stick and slip, a drift or a load along the sweep)
+            if scale > 1.0:
                 notes.append(f"{side} side: this form misfits the levels (χ² = {dec.fit.chi2:.3g} for {dec.fit.dof} "
-                             f"degrees of freedom, p < {MISFIT_P:g}): its σ assume it fits; see the levels against "
-                             f"the curve before trusting them" + misfit_in_time(levels, dec.fit, 1 if side == "positive" else -1))
+                             f"degrees of freedom, p < {MISFIT_P:g}): its σ are widened by √(χ²/dof) = {scale:.3g}, "
+                             f"beyond the levels' noise; see the levels against the curve"
+                             + misfit_in_time(levels, dec.fit, 1 if side == "positive" else -1))
     if tfit is not None:
         for i in range(1, len(tfit.F)):
             unc[f"transition_curve.F.{i}"] = float(tfit.stderr[i])
@@ -835,6 +841,12 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     if said := direction_asymmetry(in_units):
         res.notes.append(said)
 
+    final_unc = {**unc, **res.params.uncertainty} if res.refinement.get("done") else unc
+    loose = undetermined_once_widened(res.params, final_unc, {k: w for k, w in widened.items() if final_unc.get(k) == unc[k]})
+    if loose:
+        res.held.update(loose)
+        final_unc = {k: v for k, v in final_unc.items() if k not in loose}
+
     cost = {}
     if any(d.fit is not None for d in decisions.values()):
         cost["markov_chi2"] = {k: d.fit.chi2 for k, d in decisions.items() if d.fit is not None}
@@ -853,9 +865,23 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
     }
     say(1.0, "done")
-    res.params = res.params.replace(uncertainty={**unc, **res.params.uncertainty} if res.refinement.get("done") else unc,
-                                    provenance=prov, units=units).validate()
+    res.params = res.params.replace(uncertainty=final_unc, provenance=prov, units=units).validate()
     return res
+
+
+def undetermined_once_widened(p: FrictionParams, unc: dict, widened: dict) -> dict:
+    """The S(v) entries whose σ, widened by their side's misfit (``widened``: path → √(χ²/dof)),
+    exceed half the value: not determined by the levels in this form, so held at the Markov
+    fit's value with the reason ({path: why}) rather than written as an estimate (a hydraulic
+    cylinder whose load swung ±50 % through its sweep read F_c −973 ± 12,300 N on one side)."""
+    out = {}
+    for path, scale in widened.items():
+        _, side, name = path.split(".")
+        value = getattr(getattr(p.stribeck, side), name)
+        if unc[path] > 0.5 * abs(value):
+            out[path] = (f"not determined by the levels in this form: its σ {unc[path]:.3g}, widened by √(χ²/dof) = "
+                         f"{scale:.3g} for the form's misfit, is over half the value; held at the Markov fit's value")
+    return out
 
 
 CURVE_COVERS = 0.5  # a transition curve topping below this share of F_s⁺ − F_s⁻ is said to stop short

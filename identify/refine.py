@@ -438,9 +438,14 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
         res.refinement = {"done": False, "reason": f"the simulation-based least squares failed ({e})"}
         return res
     if not _lowered_enough(fit, r0, after_try, before, loss):
+        # each residual beside the noise it is weighted by: a force-driven stretch that barely
+        # moves leaves a residual far under the encoder's step, which alone reads as a puzzle
+        noise = {k: float(np.sqrt(np.mean(1.0 / e.weight[e.weight > 0] ** 2))) for k, e in zip(before, exps)
+                 if (e.weight > 0).any()}
         res.refinement = {"done": False, "reason": "simulating the full model lowered the cost by less than 10 %: kept "
                           "the Markov and maximum-likelihood estimates (residual RMS "
-                          + "; ".join(f"{k}: {v:.3g}" for k, v in before.items()) + ")", "rms_before": before,
+                          + "; ".join(f"{k}: {v:.3g}" + (f" against a noise of {noise[k]:.3g}" if k in noise else "")
+                                      for k, v in before.items()) + ")", "rms_before": before,
                           "continued": continued}
         return res
     # δ of eq. (7) has a finite range here (0.05–5): an S(v) whose shape the simulation pushed

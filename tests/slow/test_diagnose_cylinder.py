@@ -43,14 +43,22 @@ def test_a_load_changing_all_session_is_fitted_on_both_sides_and_named_alone(tmp
     assert f"({runs[0]} positive, {runs[1]} negative)" in out, out
     p = yaml.safe_load(base.read_text())
     assert not any("mirrored" in why for why in p["provenance"]["held"].values()), p["provenance"]["held"]
-    # averaged over the loads (0.5–1.5 N0), each Coulomb level lies within the range the loads
-    # make of it, within twice its stated σ (the load and S(v) share the levels: σ says how much);
-    # the side whose runs all trend is determined by them (mirrored, it read 973 ± 320 N)
+    # averaged over the loads (0.5–1.5 N0), a Coulomb level written as an estimate lies within
+    # the range the loads make of it, within twice its stated σ — σ widened by the form's misfit
+    # of the levels (the load and S(v) share them: χ²/dof in the thousands), and under half the
+    # value; a side whose Stribeck form the loads leave undetermined once that is counted is
+    # held with that reason, not written with an error bar larger than itself
     lo, hi = 0.5 ** truth["effect"]["alpha"], 1.5 ** truth["effect"]["alpha"]
+    estimated = 0
     for side, fc in (("positive", truth["params_SI"]["Fc_p"]), ("negative", truth["params_SI"]["Fc_n"])):
-        est, sd = abs(p["stribeck"][side]["Fc"]), p["uncertainty"][f"stribeck.{side}.Fc"]
-        assert lo * fc - 2 * sd < est < hi * fc + 2 * sd, (side, est, sd)
-    assert p["uncertainty"]["stribeck.positive.Fc"] < 0.1 * abs(p["stribeck"]["positive"]["Fc"]), p["uncertainty"]
+        path, est = f"stribeck.{side}.Fc", abs(p["stribeck"][side]["Fc"])
+        if path in p["uncertainty"]:
+            sd = p["uncertainty"][path]
+            assert lo * fc - 2 * sd < est < hi * fc + 2 * sd and sd < 0.5 * est, (side, est, sd)
+            estimated += 1
+        else:
+            assert "widened by √(χ²/dof)" in p["provenance"]["held"][path], p["provenance"]["held"]
+    assert estimated >= 1, p["uncertainty"]
     rep = _diagnose(tmp_path, csv, base)
     assert rep["effects"] == ["normal_load"], rep["effects"]
     load = written(rep, "normal_load")
