@@ -33,22 +33,28 @@ def _params(path: str | None, model: str | None):
     return as_model(p, model) if model else p
 
 
-def say_if_compiling(out=sys.stderr) -> bool:
-    """Say so where the simulator's kernels have no compiled cache yet: numba compiles them on
-    their first use on a machine (``cache=True`` keeps them), and that run takes 30–60 s more (a
-    fit of the sample 36 s against 3 s once cached; a new user's first fit, beside other runs, 76 s
-    against 8). Looked up without importing numba (the command line starts light)."""
+def say_if_compiling(*modules: str, out=sys.stderr) -> bool:
+    """Say so where the compiled kernels a command runs (the simulator's, ``model.kernels``, and
+    any of ``modules`` besides) have no compiled cache yet: numba compiles them on their first use
+    on a machine (``cache=True`` keeps them), and that run takes 30–60 s more (a fit of the sample
+    36 s against 3 s once cached; a new user's first fit, beside other runs, 76 s against 8; the
+    diagnosis's own kernels, compiled on its first run after a fit had compiled the simulator's,
+    made a servo axis's first diagnosis 34 s against 18, unsaid). Looked up without importing
+    numba (the command line starts light)."""
     import importlib.util
     import os
     from pathlib import Path
 
-    spec = importlib.util.find_spec("leuven_friction.model.kernels")
-    if spec is None or not spec.origin:
-        return False
-    src = Path(spec.origin)
-    # numba's cache: beside the source, else NUMBA_CACHE_DIR, else the user's cache directory
-    places = [src.parent / "__pycache__", Path(os.environ.get("NUMBA_CACHE_DIR") or Path.home() / ".cache" / "numba")]
-    if any(any(d.rglob(f"{src.stem}.*.nbi")) for d in places if d.is_dir()):
+    def cached(module: str) -> bool:
+        spec = importlib.util.find_spec(f"leuven_friction.{module}")
+        if spec is None or not spec.origin:
+            return True
+        src = Path(spec.origin)
+        # numba's cache: beside the source, else NUMBA_CACHE_DIR, else the user's cache directory
+        places = [src.parent / "__pycache__", Path(os.environ.get("NUMBA_CACHE_DIR") or Path.home() / ".cache" / "numba")]
+        return any(any(d.rglob(f"{src.stem}.*.nbi")) for d in places if d.is_dir())
+
+    if all(cached(m) for m in ("model.kernels", *modules)):
         return False
     print("note: compiling the simulator's kernels for this machine (the first run only: 30–60 s more)", file=out)
     return True
@@ -336,7 +342,7 @@ def cmd_diagnose(args) -> int:
     rec = load_recording(_recording(args.data), columns=cols, units=parse_unit_mapping(args.units),
                          require=("time", "position"))
     say_reading(rec)
-    say_if_compiling()
+    say_if_compiling("identify.diagnose")  # (the diagnosis's own kernels: a fit before it does not compile them)
     if args.params:
         params = _params(args.params, None)
         if (warning := units_mismatch(args.params, params, rec)):

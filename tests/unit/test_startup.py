@@ -57,14 +57,21 @@ def test_a_first_run_says_the_kernels_are_being_compiled(tmp_path, monkeypatch):
     from leuven_friction.model import default_params, simulate_displacement
 
     simulate_displacement(default_params(), np.arange(3) * 1e-3, np.zeros(3))  # the real cache exists now
-    assert not say_if_compiling(io.StringIO())
-    src = tmp_path / "pkg" / "kernels.py"
-    src.parent.mkdir()
-    src.write_text("")
-    monkeypatch.setattr(importlib.util, "find_spec", lambda name: SimpleNamespace(origin=str(src)))
+    assert not say_if_compiling(out=io.StringIO())
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    for stem in ("kernels", "diagnose"):
+        (pkg / f"{stem}.py").write_text("")
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name: SimpleNamespace(origin=str(pkg / f"{name.rsplit('.', 1)[-1]}.py")))
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
     said = io.StringIO()
-    assert say_if_compiling(said) and "compiling the simulator's kernels" in said.getvalue()
-    (src.parent / "__pycache__").mkdir()
-    (src.parent / "__pycache__" / "kernels.run_force-666.py311.nbi").write_text("")
-    assert not say_if_compiling(io.StringIO())
+    assert say_if_compiling(out=said) and "compiling the simulator's kernels" in said.getvalue()
+    (pkg / "__pycache__").mkdir()
+    (pkg / "__pycache__" / "kernels.run_force-666.py311.nbi").write_text("")
+    assert not say_if_compiling(out=io.StringIO())
+    # the diagnosis's own kernels are compiled on its first run, after a fit compiled the
+    # simulator's: that run is said too, and not once they are cached
+    assert say_if_compiling("identify.diagnose", out=io.StringIO())
+    (pkg / "__pycache__" / "diagnose._play-374.py311.nbi").write_text("")
+    assert not say_if_compiling("identify.diagnose", out=io.StringIO())
