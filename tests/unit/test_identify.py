@@ -466,3 +466,29 @@ def test_a_negative_viscous_slope_is_said_as_coulomb_alone_with_its_degrees_of_f
     assert dec.model == COULOMB_SLOPE_HELD and "sigma2" in dec.held and dec.fit.values["sigma2"] == 0
     assert dec.fit.dof == len(v) - 1
     assert dec.fit.values["Fc"] == pytest.approx(F.mean(), rel=1e-9)  # equal weights: the mean level
+
+
+@pytest.mark.parametrize("sd", [1e-6, 5e-6])
+def test_the_sigma_of_a_form_that_misfits_its_levels_covers_another_design_of_the_sweep(sd):
+    # levels of a Lorentzian S(v), which eq. (7) does not follow, at two interleaved sets of eight
+    # speeds: the two fits' F_c differ by what the form leaves, far beyond the levels' noise. The
+    # σ widened by √(χ²/dof) cover that difference; the noise's alone put it 5–33 σ out
+    from leuven_friction.identify.markov import fit_side_honest, misfit_scale
+
+    grid = np.geomspace(0.01, 1.0, 16)
+    for seed in range(4):
+        rng = np.random.default_rng(seed)
+        fits = []
+        for v in (grid[0::2], grid[1::2]):
+            F, var = _lorentzian_levels(v, rng, sd)
+            fits.append(fit_side_honest(Levels(v, F, var, np.full(len(v), 500.0)), 1).fit)
+        a, b = fits
+        apart = abs(a.values["Fc"] - b.values["Fc"])
+        assert apart > 4 * np.hypot(a.stderr["Fc"], b.stderr["Fc"]), (seed, apart)
+        assert apart < 1.5 * np.hypot(a.stderr["Fc"] * misfit_scale(a), b.stderr["Fc"] * misfit_scale(b)), (seed, apart)
+    # levels of eq. (7) itself, to their noise: no widening
+    rng = np.random.default_rng(0)
+    v = np.geomspace(0.01, 1.0, 8)
+    F = 8e-3 + 3e-3 * np.exp(-(v / 0.1) ** 1.2) + 2e-3 * v + rng.normal(0, sd, len(v))
+    fit = fit_side_honest(Levels(v, F, np.full(len(v), sd**2), np.full(len(v), 500.0)), 1).fit
+    assert misfit_scale(fit) == 1.0, (fit.chi2, fit.dof)
