@@ -342,7 +342,7 @@ def cmd_diagnose(args) -> int:
     rec = load_recording(_recording(args.data), columns=cols, units=parse_unit_mapping(args.units),
                          require=("time", "position"))
     say_reading(rec)
-    say_if_compiling("identify.diagnose")  # (the diagnosis's own kernels: a fit before it does not compile them)
+    say_if_compiling("identify.diagnose", "model.windows")  # (the diagnosis's own kernels: a fit does not compile them)
     if args.params:
         params = _params(args.params, None)
         if (warning := units_mismatch(args.params, params, rec)):

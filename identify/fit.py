@@ -26,7 +26,7 @@ from ..model.simulate import stribeck_curve
 
 from .data import Recording, units_of_recordings
 from .errors import IdentificationError
-from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfit_scale, misfits,
+from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfit_scale, misfits, widened_stderr,
                      stribeck_plus_viscous)
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, beyond_levels,
@@ -782,25 +782,27 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 
     unc = {} if inertia_sd is None else {"inertia": inertia_sd}
     widened = {}  # "stribeck.<side>.<name>" -> √(χ²/dof) its σ were widened by
+    misfit_notes = {}  # side -> its misfit note, with {said} for what became of its σ
     for side, dec in decisions.items():
         if dec.fit is not None:
             # where the form misfits its levels (slow holds that stick and slip, a drift or a load
             # along the sweep, a contact whose S(v) is not eq. (7)'s shape), the noise's σ would
             # claim what the form does not give: they are widened by √(χ²/dof)
-            scale = misfit_scale(dec.fit)
+            scale, sds = misfit_scale(dec.fit), widened_stderr(dec.fit)
             for k in NAMES:
                 path = f"stribeck.{side}.{k}"
                 if path not in held:
-                    unc[path] = dec.fit.stderr[k] * scale
+                    unc[path] = sds[k]
                     if scale > 1.0:
                         widened[path] = scale
             notes.extend(f"{side}: {m}" for m in dec.fit.notes)
             notes.append(f"{side} side: {dec.model}")
             if scale > 1.0:
-                notes.append(f"{side} side: this form misfits the levels (χ² = {dec.fit.chi2:.3g} for {dec.fit.dof} "
-                             f"degrees of freedom, p < {MISFIT_P:g}): its σ are widened by √(χ²/dof) = {scale:.3g}, "
-                             f"beyond the levels' noise; see the levels against the curve"
-                             + misfit_in_time(levels, dec.fit, 1 if side == "positive" else -1))
+                # (said after the refinement, which may replace these σ by its own: ``widened_said``)
+                misfit_notes[side] = (scale, f"{side} side: this form misfits the levels (χ² = {dec.fit.chi2:.3g} for "
+                                      f"{dec.fit.dof} degrees of freedom, p < {MISFIT_P:g}): its σ "
+                                      f"{{said}}; see the levels against the curve"
+                                      + misfit_in_time(levels, dec.fit, 1 if side == "positive" else -1))
     if tfit is not None:
         for i in range(1, len(tfit.F)):
             unc[f"transition_curve.F.{i}"] = float(tfit.stderr[i])
@@ -833,19 +835,29 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
         res.refinement = {"done": False, "reason": "skipped (--no-refine)"}
     # in the recordings' units (written into the parameters only below): a stage in m and N read "N*m"
     units = units_of_recordings(recordings)
-    in_units = res.params.replace(units=units)
+    # the σ written: the refinement's where it was kept, else the Markov ones (widened where the
+    # form misfits); a value whose widened σ is over half of it is held, not written with it
+    final_unc = {**unc, **res.params.uncertainty} if res.refinement.get("done") else unc
+    still = {k: w for k, w in widened.items() if final_unc.get(k) == unc[k]}
+    loose = undetermined_once_widened(res.params, final_unc, still)
+    if loose:
+        res.held.update(loose)
+        final_unc = {k: v for k, v in final_unc.items() if k not in loose}
+    for side, (scale, said) in misfit_notes.items():
+        mine = [k for k in widened if k.startswith(f"stribeck.{side}.")]
+        kept = [k for k in mine if k in still]
+        res.notes.append(said.replace("{said}", (
+            f"are widened by √(χ²/dof) = {scale:.3g}, beyond the levels' noise" if len(kept) == len(mine) else
+            f"({', '.join(k.rsplit('.', 1)[1] for k in kept)}) are widened by √(χ²/dof) = {scale:.3g}, beyond the "
+            f"levels' noise; the others are the refinement's" if kept else
+            f"are the refinement's (the levels' widened by √(χ²/dof) = {scale:.3g} are replaced)")))
+    in_units = res.params.replace(units=units, uncertainty=final_unc)
     if tfit is not None and (said := curve_coverage(in_units, min(branch_ends, default=np.inf))):
         res.notes.append(said)  # of the curve written (the refinement moves its knots' F_d)
     if tfit is not None and (said := curve_continued(in_units)):
         res.notes.append(said)
     if said := direction_asymmetry(in_units):
         res.notes.append(said)
-
-    final_unc = {**unc, **res.params.uncertainty} if res.refinement.get("done") else unc
-    loose = undetermined_once_widened(res.params, final_unc, {k: w for k, w in widened.items() if final_unc.get(k) == unc[k]})
-    if loose:
-        res.held.update(loose)
-        final_unc = {k: v for k, v in final_unc.items() if k not in loose}
 
     cost = {}
     if any(d.fit is not None for d in decisions.values()):

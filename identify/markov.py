@@ -89,6 +89,9 @@ class SideFit:
     dof: int
     names: tuple = NAMES
     notes: list = field(default_factory=list)
+    # the part of each σ that is not the levels' noise (``with_delta_spread``: how far a value
+    # moves with δ held elsewhere in its range), added in quadrature; {} where there is none
+    spread: dict = field(default_factory=dict)
 
 
 def stribeck_plus_viscous(theta, v):
@@ -254,7 +257,8 @@ def with_delta_spread(fit: SideFit, levels: Levels, sign: int, delta_range: tupl
         stderr[k] = float(np.hypot(fit.stderr[k], 0.5 * (max(vals) - min(vals))))
     notes = fit.notes + [f"σ of Fs, Fc, vs and σ2 include how far they move with δ held anywhere in "
                          f"{delta_range[0]:.3g}–{delta_range[1]:.3g} (δ is not determined by the levels)"]
-    return SideFit(fit.values, stderr, fit.correlation, fit.chi2, fit.dof, fit.names, notes)
+    spread = {k: math.sqrt(max(stderr[k] ** 2 - fit.stderr[k] ** 2, 0.0)) for k in ("Fs", "Fc", "vs", "sigma2")}
+    return SideFit(fit.values, stderr, fit.correlation, fit.chi2, fit.dof, fit.names, notes, spread)
 
 
 def distinct_speeds(speed: np.ndarray) -> int:
@@ -442,6 +446,18 @@ def misfit_scale(fit) -> float:
     the σ of the noise are the right ones). A tribometer made apart, its contact five Dahl
     elements, had a side read F_c 0.5950 ± 0.00019 N for 0.6 (χ² 6,955 for 13): ± 0.0045 widened."""
     return math.sqrt(fit.chi2 / fit.dof) if misfits(fit) else 1.0
+
+
+def widened_stderr(fit) -> dict:
+    """A side's σ as written: the levels' noise part widened by ``misfit_scale``, the spread
+    part (``SideFit.spread``, not noise) added as it is."""
+    scale = misfit_scale(fit)
+    out = {}
+    for k, sd in fit.stderr.items():
+        sp = fit.spread.get(k, 0.0)
+        noise = math.sqrt(max(sd * sd - sp * sp, 0.0))
+        out[k] = math.hypot(noise * scale, sp) if scale > 1.0 else sd
+    return out
 
 
 def _coulomb_viscous(levels: Levels, sign: int, viscous: bool) -> SideFit:
