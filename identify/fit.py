@@ -26,8 +26,8 @@ from ..model.simulate import stribeck_curve
 
 from .data import Recording, units_of_recordings
 from .errors import IdentificationError
-from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfit_scale, misfits, widened_stderr,
-                     stribeck_plus_viscous)
+from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfit_scale,
+                     misfits, stribeck_plus_viscous, widened_stderr)
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, beyond_levels,
                       constant_velocity_levels, crossing_range, crossings, fast_runs, force_branches,
@@ -798,7 +798,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             notes.extend(f"{side}: {m}" for m in dec.fit.notes)
             notes.append(f"{side} side: {dec.model}")
             if scale > 1.0:
-                # (said after the refinement, which may replace these σ by its own: ``widened_said``)
+                # (said after the refinement, which may replace these σ by its own: below)
                 misfit_notes[side] = (scale, f"{side} side: this form misfits the levels (χ² = {dec.fit.chi2:.3g} for "
                                       f"{dec.fit.dof} degrees of freedom, p < {MISFIT_P:g}): its σ "
                                       f"{{said}}; see the levels against the curve"
@@ -885,7 +885,7 @@ def undetermined_once_widened(p: FrictionParams, unc: dict, widened: dict) -> di
     """The S(v) entries whose σ, widened by their side's misfit (``widened``: path → √(χ²/dof)),
     exceed half the value: not determined by the levels in this form, so held at the Markov
     fit's value with the reason ({path: why}) rather than written as an estimate (a hydraulic
-    cylinder whose load swung ±50 % through its sweep read F_c −973 ± 12,300 N on one side)."""
+    cylinder whose load swung ±50 % through its sweep, χ²/dof 2,290: δ 1.31 ± 1.73)."""
     out = {}
     for path, scale in widened.items():
         _, side, name = path.split(".")

@@ -389,11 +389,14 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     def resid(theta):
         return np.concatenate(parts(theta))
 
+    def label(e):
+        return f"{e.source} ({'friction' if e.kind == 'motion' else 'position'})"
+
     def rms(theta):
         out = {}
         for e, r in zip(exps, parts(theta)[1:]):
             m = e.weight > 0
-            out[f"{e.source} ({'friction' if e.kind == 'motion' else 'position'})"] = float(
+            out[label(e)] = float(
                 np.sqrt(np.mean((r[m] / e.weight[m]) ** 2))) if m.any() else float("nan")
         return out
 
@@ -440,7 +443,7 @@ def _refine_once(res, preps, max_samples, max_nfev, free_sigma1):
     if not _lowered_enough(fit, r0, after_try, before, loss):
         # each residual beside the noise it is weighted by: a force-driven stretch that barely
         # moves leaves a residual far under the encoder's step, which alone reads as a puzzle
-        noise = {k: float(np.sqrt(np.mean(1.0 / e.weight[e.weight > 0] ** 2))) for k, e in zip(before, exps)
+        noise = {label(e): float(np.sqrt(np.mean(1.0 / e.weight[e.weight > 0] ** 2))) for e in exps
                  if (e.weight > 0).any()}
         res.refinement = {"done": False, "reason": "simulating the full model lowered the cost by less than 10 %: kept "
                           "the Markov and maximum-likelihood estimates (residual RMS "
