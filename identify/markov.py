@@ -251,13 +251,13 @@ def with_delta_spread(fit: SideFit, levels: Levels, sign: int, delta_range: tupl
     joint whose slow holds stick and slip, F_s came out 13.1 ± 0.33 with δ held at 1 for a
     contact's 9.98.)"""
     others = [fit_side(levels, sign, hold={"delta": d}) for d in delta_range]
-    stderr = dict(fit.stderr)
+    stderr, spread = dict(fit.stderr), {}
     for k in ("Fs", "Fc", "vs", "sigma2"):
         vals = [fit.values[k]] + [f.values[k] for f in others]
-        stderr[k] = float(np.hypot(fit.stderr[k], 0.5 * (max(vals) - min(vals))))
+        spread[k] = 0.5 * (max(vals) - min(vals))
+        stderr[k] = float(np.hypot(fit.stderr[k], spread[k]))
     notes = fit.notes + [f"σ of Fs, Fc, vs and σ2 include how far they move with δ held anywhere in "
                          f"{delta_range[0]:.3g}–{delta_range[1]:.3g} (δ is not determined by the levels)"]
-    spread = {k: math.sqrt(max(stderr[k] ** 2 - fit.stderr[k] ** 2, 0.0)) for k in ("Fs", "Fc", "vs", "sigma2")}
     return SideFit(fit.values, stderr, fit.correlation, fit.chi2, fit.dof, fit.names, notes, spread)
 
 
