@@ -67,6 +67,19 @@ def _recording(arg: str) -> str:
     return resolve(arg)
 
 
+def _refuse_repeats(args: list[str], paths: list[str]) -> None:
+    """One file given twice would count its samples twice: every σ would come out √2 too small."""
+    from pathlib import Path
+
+    seen: dict[Path, str] = {}
+    for arg, path in zip(args, paths):
+        key = Path(path).resolve()
+        if key in seen:
+            also = "" if seen[key] == arg else f" (also as {seen[key]})"
+            raise UserError(f"{arg}: given twice{also}; each recording counts once in a fit")
+        seen[key] = arg
+
+
 def _table(result_runs, labels) -> dict:
     """The simulated series as named columns; several runs one under the other, labelled."""
     import numpy as np
@@ -425,8 +438,9 @@ def cmd_fit(args) -> int:
     Thresholds.checked(overrides)  # a bad setting is refused before any file is read
     # every fit finds its levels and branches in the position: a file without one is refused as it is read
     units = parse_unit_mapping(args.units)
-    recs = [load_recording(_recording(path), columns=cols, units=units, require=("time", "position"))
-            for path in args.data]
+    paths = [_recording(path) for path in args.data]
+    _refuse_repeats(args.data, paths)
+    recs = [load_recording(path, columns=cols, units=units, require=("time", "position")) for path in paths]
     from ..identify.segment import check_force_or_friction
 
     for r in recs:

@@ -66,6 +66,14 @@ def test_softening_thresholds_below_one_is_refused_before_the_work(tmp_path, cap
     assert os.listdir(tmp_path) == []
 
 
+def test_a_recording_given_twice_to_fit_is_refused_whatever_it_is_called(tmp_path, capsys):
+    # counted twice its samples would halve every variance: the σ written would be √2 too small
+    for second in (SAMPLE, os.path.realpath(SAMPLE)):  # the same file spelt otherwise
+        rc, _, err = run(capsys, "fit", SAMPLE, second, "-o", tmp_path / "p.yaml")
+        assert rc == 2 and "given twice" in one_line(err) and "each recording counts once" in err
+    assert os.listdir(tmp_path) == []
+
+
 def test_output_that_is_read_only_or_a_directory(tmp_path, capsys):
     ro = tmp_path / "ro.yaml"
     ro.write_text("keep me")
