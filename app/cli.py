@@ -339,6 +339,13 @@ def _threshold_items(items) -> dict:
     return out
 
 
+def diagnosis_kernels(space: str) -> tuple[str, ...]:
+    """The modules whose compiled kernels a diagnosis runs besides the simulator's (a fit does not
+    compile them): the windows' only where it compares positions — a comparison in friction
+    never runs them, and naming them there said "compiling" on every run."""
+    return ("identify.diagnose", "model.windows") if space == "position" else ("identify.diagnose",)
+
+
 def cmd_diagnose(args) -> int:
     from ..identify.data import load_recording, parse_column_mapping, parse_unit_mapping
     from ..identify.diagnose import diagnose, reading_overrides
@@ -355,7 +362,7 @@ def cmd_diagnose(args) -> int:
     rec = load_recording(_recording(args.data), columns=cols, units=parse_unit_mapping(args.units),
                          require=("time", "position"))
     say_reading(rec)
-    say_if_compiling("identify.diagnose", "model.windows")  # (the diagnosis's own kernels: a fit does not compile them)
+    say_if_compiling(*diagnosis_kernels(args.space))
     if args.params:
         params = _params(args.params, None)
         if (warning := units_mismatch(args.params, params, rec)):

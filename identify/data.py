@@ -790,7 +790,11 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             values = -values
             rec.turned.add(sig)
             notes.append(f"{col}: taken as {sig} with its sign turned, as asked ({columns_option(sig, col, True)})")
-        unit = (units or {}).get(sig) or headers[col][1]
+        asked = (units or {}).get(sig)
+        unit = asked or headers[col][1]
+        if asked and headers[col][1] and headers[col][1].strip() != asked.strip():
+            # as asked, and said: a header's ms read as s made a 29-hour session of a 106 s one, unsaid
+            notes.append(f"{col}: read in {asked} as --units asks, not in the header's {headers[col][1]}")
         if col == cof:
             # a friction coefficient: dimensionless (a header may say "-" or "1"), N times it is the friction
             if unit is not None and unit.strip() not in ("-", "1", "—", ""):
@@ -817,12 +821,18 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                             "and payload) times g, in N" if sig == "normal_load" else f"{sig} is a force, in N")
                     raise DataError(f"{path}: column {col!r}: unit {unit!r} is a mass, not a force: {what}; write "
                                     f"that column in N")
-                raise DataError(f"{path}: column {col!r}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
+                # named where it was written, where the fix is made
+                raise DataError(f"{path}: {f'--units {sig}={asked}' if asked else f'column {col!r}'}: unknown unit "
+                                f"{unit!r} (known: {UNITS_ACCEPTED})")
             factor, si = unit_of(unit, sig)
             if si not in SI_OF[sig]:
-                raise DataError(f"{path}: column {col!r} was taken as {sig}, but its unit {unit!r} is a {_KIND[si]} "
-                                f"unit; {sig} needs {' or '.join(SI_OF[sig])} or a multiple: correct the header's "
-                                f"unit, or name another column with --columns {sig}=<column>")
+                kind = _KIND[si]
+                fix = (f"correct --units {sig}=…" if asked else
+                       f"correct the header's unit, or name another column with --columns {sig}=<column>")
+                raise DataError(f"{path}: column {col!r} was taken as {sig}, but its unit {unit!r}"
+                                + (" (from --units)" if asked else "")
+                                + f" is {'an' if kind[0] in 'aeiou' else 'a'} {kind} unit; {sig} needs "
+                                f"{' or '.join(SI_OF[sig])} or a multiple: {fix}")
             if factor != 1.0:
                 values = values * factor
                 notes.append(f"{col}: converted from {unit} to {si}")

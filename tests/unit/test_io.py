@@ -324,6 +324,25 @@ def test_an_unknown_unit_is_refused_with_the_known_ones(tmp_path):
         load_recording(path)
 
 
+def test_a_unit_given_by_option_is_named_as_the_options_and_overriding_a_header_is_said(tmp_path):
+    # a mistake in --units is fixed in the option, not in the header the message used to name;
+    # an option read over a header's unit is taken as asked and said (a header's ms read as s
+    # had made a 106 s session 29 hours long without a word)
+    path = tmp_path / "joint.csv"
+    path.write_text("time [ms],angle [deg],torque [mN*m]\n" + "".join(f"{i},{0.1 * i},{i}\n" for i in range(20)))
+    with pytest.raises(DataError, match=r"--units force=mN\*n: unknown unit 'mN\*n'"):
+        load_recording(path, units={"force": "mN*n"})
+    with pytest.raises(DataError, match=r"unit 'deg/s' \(from --units\) is an angular speed unit; .*correct --units "
+                                        r"position=…$"):
+        load_recording(path, units={"position": "deg/s"})
+    with pytest.raises(DataError, match=r"its unit 'mN\*m' is a torque unit; .*correct the header's unit"):
+        load_recording(path, columns={"position": "torque [mN*m]", "force": "angle [deg]"})
+    rec = load_recording(path, units={"time": "s"})
+    np.testing.assert_allclose(rec.time[1], 1.0)  # as asked
+    assert "time [ms]: read in s as --units asks, not in the header's ms" in rec.notes, rec.notes
+    assert not any("--units asks" in n for n in load_recording(path, units={"time": "ms"}).notes)
+
+
 def test_an_encoder_logged_in_counts_reads_with_the_size_of_a_count_as_its_unit(tmp_path):
     # 1234 counts of 50 nm are 61.7 µm; of 0.001° they are 1.234° (the radian by hand)
     rows = "".join(f"{i},{1234 + i},{i}\n" for i in range(20))

@@ -75,3 +75,26 @@ def test_a_first_run_says_the_kernels_are_being_compiled(tmp_path, monkeypatch):
     assert say_if_compiling("identify.diagnose", out=io.StringIO())
     (pkg / "__pycache__" / "diagnose._play-374.py311.nbi").write_text("")
     assert not say_if_compiling("identify.diagnose", out=io.StringIO())
+
+
+def test_a_diagnosis_in_friction_asks_only_for_the_kernels_it_runs(monkeypatch):
+    # the "compiling" note looks for the caches of the kernels a command will run: a comparison
+    # in friction never runs the position windows' kernel, so naming it there (never cached by
+    # such runs) said "compiling" on every diagnosis of a new user's joint
+    import leuven_friction.model.windows as windows
+    from leuven_friction.app.cli import diagnosis_kernels
+    from leuven_friction.identify.data import load_recording
+    from leuven_friction.identify.diagnose import Settings, diagnose
+    from leuven_friction.identify.fit import fit_recordings
+
+    def never(*args, **kw):
+        raise AssertionError("a comparison in friction ran the position windows' kernel")
+
+    rec = load_recording("sample_data/constant_velocity.csv")  # an applied torque: positions could be compared
+    base = fit_recordings([rec], refine=False).params
+    monkeypatch.setattr(windows, "simulate_windows", never)
+    assert diagnose(rec, base).space == "friction"
+    assert "model.windows" not in diagnosis_kernels("friction")
+    assert "model.windows" in diagnosis_kernels("position")
+    with pytest.raises(AssertionError, match="ran the position windows"):
+        diagnose(rec, base, settings=Settings(space="position"))
