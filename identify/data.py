@@ -354,6 +354,8 @@ def _assume_si(rec: "Recording", unitless: list) -> str:
         why = "the column names"
     kind = kinds.pop() if len(kinds) == 1 else None
     table = _SI_BY_KIND[kind or "rotary"]
+    # the normal load is a force on either kind of machine (it tells neither kind apart, so it is not in the table)
+    table = {**table, "normal_load": "N"}
     for sig in unitless:
         if sig in table:
             rec.units[sig] = table[sig]

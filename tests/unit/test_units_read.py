@@ -54,6 +54,20 @@ def test_a_header_without_units_is_read_as_si_of_the_machine_its_names_say(heade
     assert any("assumed SI" in n for n in rec.notes)
 
 
+def test_a_load_without_a_unit_is_said_as_read_in_newtons_on_either_kind_of_machine():
+    # the note had named no column ("no unit in the header of : assumed SI") for a load logged
+    # in lbf without its unit, which was read 4.45 times too small without a word
+    t, x, f = _signals()
+    for header, kind in ((["time [s]", "position [in]", "friction [lbf]", "normal_load"], "linear"),
+                         (["time [s]", "angle [deg]", "torque [N*m]", "normal_load"], "rotary")):
+        rec = load_recording(_csv(header, [t, x, f, 250.0 + 0 * t]), name="rig.csv")
+        assert rec.units["normal_load"] == "N"
+        np.testing.assert_array_equal(rec.normal_load, 250.0)
+        said = [n for n in rec.notes if "assumed SI" in n]
+        assert said == [f"no unit in the header of normal_load in N: assumed SI, a {kind} machine's (as the units of "
+                        f"its other columns say)"], rec.notes
+
+
 def test_an_empty_cell_is_named_by_column_and_row():
     t, x, f = _signals(50)
     text = _csv(["time [s]", "position [m]", "force [N]"], [t, x, f]).splitlines()
