@@ -117,6 +117,7 @@ class Settings:
     max_effects: int = 3
     free_steady: bool = True  # the alternative holds a free correction to S(v) (FreeSteadyCurve)
     rate_nuisance: bool = True  # a stiffness effect is judged beside a stiffness varying with speed (stiffness_alternative)
+    travel_nuisance: bool = True  # … and beside one varying with the stroke's travel (stiffness_alternative)
     range_nuisance: bool = True  # … and, beside a friction effect, a presliding range following it (stiffness_alternative)
     range_with_friction: bool = True  # a drift or a load is judged also with a presliding range following it (range_alternative)
     refit_curve: bool = True  # the alternative reshapes a piecewise-linear F_d segment by segment (refit_transition)
@@ -1316,6 +1317,13 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
         # position has no noise to set that threshold)
         v_floor = min(max(cmp_.v_rest, 1e-3 * v_ref), v_ref)
         return Term(name, {"v_ref": v_ref, "v_floor": v_floor}, (("c1", "lin", -2.0, 2.0), ("c2", "lin", -1.0, 1.0)))
+    if name == "travel_stiffness":
+        # loops from the smallest counted (min_excursion) to twice the presliding range, where a
+        # stroke ends in gross sliding (``gross_sliding``) and its transition is the whole curve's
+        z = max(cmp_.z_presliding, cmp_.min_excursion)
+        return Term(name, {"s_ref": z, "s_floor": cmp_.min_excursion, "s_cap": 2.0 * z,
+                           "min_excursion": cmp_.min_excursion},
+                    (("c1", "lin", -2.0, 2.0), ("c2", "lin", -1.0, 1.0)))
     if name == "presliding_stiffness":
         return Term(name, {}, (("kappa", "log", math.log(0.05), math.log(20.0)),))
     raise KeyError(name)
@@ -2692,6 +2700,7 @@ class Alternative:
 
 
 HELD_STIFFNESS = {"rate_stiffness": "a stiffness varying with speed",
+                  "travel_stiffness": "a stiffness varying with the stroke's travel",
                   "presliding_range": "a presliding range following the friction effects"}
 
 
@@ -2707,6 +2716,15 @@ def stiffness_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, 
     credited to a softening or hardening with the reversals. (The speed of the stroke a sample
     belongs to in its place was tried on a LuGre guideway whose slow strokes fall mid-session: a
     softening stayed named on one of its two controls — README, recordings made apart.)
+
+    ``travel_stiffness``: a presliding stiffness that varies smoothly with the travel of the
+    stroke between two reversals. Eq. (5)'s memory keeps Masing's rule, every branch the same
+    curve from its reversal; a contact that does not (a Dahl-like one, whose stiffness after a
+    reversal grows with the force it turned at) shows the model small loops softer than large
+    ones, and where a session's loops grow with the number of reversals (presliding cycles of
+    rising amplitude, then strokes) that was credited to a hardening: a linear rig made apart,
+    Dahl presliding, named one on its control (h 0.13, n_c 5.8) and nothing once its loops'
+    amplitudes were shuffled.
 
     ``presliding_range`` (where a friction effect is in the model): the presliding range
     following that effect's factor. A named drift or load scales eq. (3)'s F whole, the
@@ -2762,6 +2780,8 @@ def held_stiffness(terms: list, settings: Settings) -> tuple:
     out = []
     if settings.rate_nuisance and "rate_stiffness" not in have:
         out.append("rate_stiffness")
+    if settings.travel_nuisance and "travel_stiffness" not in have:
+        out.append("travel_stiffness")
     if (settings.range_nuisance and "presliding_range" not in have
             and any(EFFECTS[n].acts_on == "friction" for n in have)):
         out.append("presliding_range")

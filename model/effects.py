@@ -99,6 +99,8 @@ class Context:
     _phase: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     # ln(max(|v|, v_floor)/v_ref) per (v_floor, v_ref): a speed-dependent stiffness's fixed abscissa
     _log_speed: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    # ln(clip(travel, floor, cap)/ref) per (floor, cap, ref, min_excursion): a travel-dependent stiffness's abscissa
+    _log_travel: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     # the last FACTORS_KEPT factors made (``Effect.scale``), by the effect's factor and its values
     _factors: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
@@ -109,6 +111,7 @@ class Context:
         object.__setattr__(out, "_counts", self._counts)
         object.__setattr__(out, "_phase", self._phase)
         object.__setattr__(out, "_log_speed", self._log_speed)
+        object.__setattr__(out, "_log_travel", self._log_travel)
         object.__setattr__(out, "_factors", self._factors)
         return out
 
@@ -142,6 +145,18 @@ class Context:
         key = (float(v_floor), float(v_ref))
         return _kept(self._log_speed, key, 2, self.time.size,
                      lambda: np.log(np.maximum(np.abs(self.signal("velocity", effect)), key[0]) / key[1]))
+
+    def log_travel(self, floor: float, cap: float, ref: float, min_excursion: float, effect: str) -> np.ndarray:
+        """ℓ = ln(clip(s, floor, cap)/ref), s the travel of the stroke each sample lies on (between
+        two reversals whose back-travel exceeds ``min_excursion``: ``stroke_travel``), kept for
+        the last two settings asked for (a travel-dependent stiffness's abscissa is fixed)."""
+        key = (float(floor), float(cap), float(ref), float(min_excursion))
+
+        def make():
+            counts = self.reversals_above(key[3], effect)
+            return np.log(np.clip(stroke_travel(self.signal("position", effect), counts), key[0], key[1]) / key[2])
+
+        return _kept(self._log_travel, key, 2, self.time.size, make)
 
     def phase_along_position(self, wavelength: float, origin: float, effect: str) -> tuple[np.ndarray, np.ndarray]:
         """(sin θ, cos θ) of θ = 2π·(x − x0)/λ along the context's position, kept for the last
@@ -341,6 +356,16 @@ def _rate_stiffness(v, ctx):
 RATE_STIFFNESS_LOG_MAX = 3.0  # |ln κ| at most: a factor e³ ≈ 20 either way, the span of a stiffness factor
 
 
+def _travel_stiffness(v, ctx):
+    # the presliding stiffness as a smooth function of the log of the travel of the stroke a
+    # sample lies on, κ = e^{c1·ℓ + c2·ℓ²}, ℓ = ln(clip(s, s_floor, s_cap)/s_ref): a contact that
+    # does not keep Masing's rule, which eq. (5)'s memory does — a Dahl-like one, whose stiffness
+    # after a reversal grows with the force it turned at, shows the model small loops softer than
+    # large ones. Strokes longer than s_cap end in gross sliding alike and count as s_cap.
+    ell = ctx.log_travel(v["s_floor"], v["s_cap"], v["s_ref"], v["min_excursion"], "travel_stiffness")
+    return np.exp(np.clip(v["c1"] * ell + v["c2"] * ell * ell, -RATE_STIFFNESS_LOG_MAX, RATE_STIFFNESS_LOG_MAX))
+
+
 def _presliding_range(v, ctx):
     # a friction effect's factor m scales eq. (3)'s F whole, the transition curve's forces
     # with it: the presliding spring stiffens with m and the range to break-away stays. Where
@@ -402,6 +427,18 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
             EffectParam("v_floor", "velocity", 0.0, 1e12, "speeds below this count as this (rest)", lo_open=True)),
            ("velocity",), _rate_stiffness, "presliding cycles of one amplitude at several speeds, the slow ones "
            "repeated at the session's end", {"c1": 0.0, "c2": 0.0}),
+    Effect("travel_stiffness", "the presliding spring's stiffness varies smoothly with the travel of the stroke "
+           "between two reversals, κ = exp(c1·ℓ + c2·ℓ²) with ℓ = ln(s/s_ref) (a contact that does not keep "
+           "Masing's rule: small loops softer or stiffer than large ones)", "stiffness",
+           (EffectParam("c1", "1", -2.0, 2.0, "slope of ln κ against ln s"),
+            EffectParam("c2", "1", -1.0, 1.0, "curvature of ln κ against ln s"),
+            EffectParam("s_ref", "position", 0.0, 1e12, "stroke travel at which κ = 1", lo_open=True),
+            EffectParam("s_floor", "position", 0.0, 1e12, "shorter strokes count as this", lo_open=True),
+            EffectParam("s_cap", "position", 0.0, 1e12, "longer strokes (into gross sliding) count as this",
+                        lo_open=True),
+            EffectParam("min_excursion", "position", 0.0, 1e12, "smallest back-travel counted as a reversal")),
+           ("position",), _travel_stiffness, "presliding cycles of several amplitudes in a shuffled order, the "
+           "first ones repeated at the session's end", {"c1": 0.0, "c2": 0.0}),
     Effect("presliding_range", "the presliding range follows the friction effects' factor m as m^e (the "
            "presliding stiffness as m^(1−e)): e = 0, the spring stiffens with friction; e = 1, its stiffness "
            "stays and the range to break-away grows with friction; e < 0, the spring stiffens faster than "
@@ -467,6 +504,21 @@ def significant_reversals(x: np.ndarray, min_excursion: float = 0.0) -> np.ndarr
     if len(x) >= 2:
         count_significant_reversals(x, float(min_excursion), out)
     return out
+
+
+def stroke_travel(x: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """For each sample of the path ``x``, the travel (max − min) of the stroke it lies on: the
+    samples between two steps of the running reversal count ``counts``
+    (``significant_reversals``, which steps at the turning points)."""
+    x = np.asarray(x, dtype=np.float64)
+    if len(x) == 0:
+        return x.copy()
+    starts = np.r_[0, np.flatnonzero(np.diff(counts)) + 1]
+    hi, lo = np.maximum.reduceat(x, starts), np.minimum.reduceat(x, starts)
+    # each stroke ends at the turning point the next one starts at
+    hi[:-1] = np.maximum(hi[:-1], x[starts[1:]])
+    lo[:-1] = np.minimum(lo[:-1], x[starts[1:]])
+    return np.repeat(hi - lo, np.diff(np.r_[starts, len(x)]))
 
 
 def context_of(time, position=None, load=None, min_excursion: float = 0.0) -> Context:

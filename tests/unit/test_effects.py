@@ -35,6 +35,8 @@ def test_every_effect_without_its_amplitudes_is_a_factor_of_one_and_with_them_is
               "position_ripple": {"a": 0.1, "wavelength": 0.013, "phase": 0.4, "a2": 0.03, "phase2": 1.0},
               "cyclic_softening": {"h": -0.4, "n_c": 3.0, "min_excursion": 1e-4},
               "rate_stiffness": {"c1": 0.2, "c2": -0.05, "v_ref": 0.01, "v_floor": 1e-4},
+              "travel_stiffness": {"c1": 0.3, "c2": -0.1, "s_ref": 0.01, "s_floor": 1e-4, "s_cap": 0.03,
+                                   "min_excursion": 1e-4},
               "presliding_stiffness": {"kappa": 1.7}, "presliding_range": {"e": 0.8}}
     assert set(values) == set(EFFECTS)
     for name, v in values.items():
@@ -43,6 +45,20 @@ def test_every_effect_without_its_amplitudes_is_a_factor_of_one_and_with_them_is
         off = e.without(v)
         assert np.all(e.scale(off, ctx) == 1.0), name
         assert {k: off[k] for k in v if k not in e.neutral} == {k: v[k] for k in v if k not in e.neutral}
+
+
+def test_travel_stiffness_gives_each_stroke_the_power_of_its_own_travel():
+    # loops of 1, 4 and 2 (position units) then a long stroke: each sample's κ is
+    # (s/s_ref)^c1 of the travel of the stroke it lies on, turning point to turning point, the
+    # long stroke counted as s_cap and a back-travel under min_excursion no reversal at all
+    legs = [(0.0, 1.0), (1.0, -3.0), (-3.0, -1.0), (-1.0, -1.05), (-1.05, 20.0)]
+    x = np.concatenate([np.linspace(a, b, 41)[(1 if i else 0):] for i, (a, b) in enumerate(legs)])
+    ctx = Context(time=np.arange(x.size, dtype=float), position=x)
+    k = EFFECTS["travel_stiffness"].scale({"c1": 0.5, "c2": 0.0, "s_ref": 2.0, "s_floor": 0.5, "s_cap": 8.0,
+                                           "min_excursion": 0.1}, ctx)
+    # strokes: 0→1 (1), 1→−3 (4), −3→−1.05→20 (the 0.05 back-travel is no reversal: 23, capped at 8)
+    expected = np.concatenate([np.full(40, 0.5 ** 0.5), np.full(40, 2.0 ** 0.5), np.full(x.size - 80, 4.0 ** 0.5)])
+    np.testing.assert_allclose(k, expected, rtol=1e-12)
 
 
 def test_position_ripple_takes_its_values_at_known_phases_at_each_wavelength_asked_in_turn():
