@@ -794,7 +794,10 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             notes.append(f"{col}: taken as {sig} with its sign turned, as asked ({columns_option(sig, col, True)})")
         asked = (units or {}).get(sig)
         unit = asked or headers[col][1]
-        if asked and headers[col][1] and headers[col][1].strip() != asked.strip():
+        # where the unit was written, where a mistake in it is mended
+        where = f"--units {sig}={asked}" if asked else f"column {col!r}"
+        if asked and headers[col][1] and (unit_of(asked, sig) or asked.strip()) != (
+                unit_of(headers[col][1], sig) or headers[col][1].strip()):
             # as asked, and said: a header's ms read as s made a 29-hour session of a 106 s one, unsaid
             notes.append(f"{col}: read in {asked} as --units asks, not in the header's {headers[col][1]}")
         if col == cof:
@@ -808,24 +811,22 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         if unit is not None and sig != "temperature":
             if unit_of(unit, sig) is None:
                 if unit.strip().lower() in COUNTS:
-                    raise DataError(f"{path}: column {col!r}: unit {unit!r} counts steps without saying their size: "
+                    raise DataError(f"{path}: {where}: unit {unit!r} counts steps without saying their size: "
                                     f"{_counts_fix(headers[col][0])}")
                 if is_current_unit(unit) and sig in ("force", "friction"):
-                    raise DataError(f"{path}: column {col!r}: unit {unit!r}: {_current_fix(col, unit)}")
+                    raise DataError(f"{path}: {where}: unit {unit!r}: {_current_fix(col, unit)}")
                 if is_current_unit(unit) and sig == "normal_load":
                     # (a valve's motor current named as its load was told "unknown unit 'A'")
-                    raise DataError(f"{path}: column {col!r}: unit {unit!r} is a current, not a load: a motor's current "
+                    raise DataError(f"{path}: {where}: unit {unit!r} is a current, not a load: a motor's current "
                                     f"drives the motion, the normal load is the force pressing the contact (N, or a "
                                     f"moment in N·m): name the load's own column with --columns normal_load=<column>")
                 if is_mass_unit(unit) and sig in ("force", "friction", "normal_load"):
                     # a payload's mass is not the load on the contact: the carriage's own weight presses it too
                     what = ("the normal load is the force pressing the contact: the whole moving mass on it (carriage "
                             "and payload) times g, in N" if sig == "normal_load" else f"{sig} is a force, in N")
-                    raise DataError(f"{path}: column {col!r}: unit {unit!r} is a mass, not a force: {what}; write "
+                    raise DataError(f"{path}: {where}: unit {unit!r} is a mass, not a force: {what}; write "
                                     f"that column in N")
-                # named where it was written, where the fix is made
-                raise DataError(f"{path}: {f'--units {sig}={asked}' if asked else f'column {col!r}'}: unknown unit "
-                                f"{unit!r} (known: {UNITS_ACCEPTED})")
+                raise DataError(f"{path}: {where}: unknown unit {unit!r} (known: {UNITS_ACCEPTED})")
             factor, si = unit_of(unit, sig)
             if si not in SI_OF[sig]:
                 kind = _KIND[si]

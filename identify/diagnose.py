@@ -1320,8 +1320,10 @@ def _terms_for(name: str, cmp_: Comparison, strokes: SpeedOrder | None = None, t
     if name == "travel_stiffness":
         # loops from the smallest counted (min_excursion) to twice the presliding range, where a
         # stroke ends in gross sliding (``gross_sliding``) and its transition is the whole curve's
-        z = max(cmp_.z_presliding, cmp_.min_excursion)
-        return Term(name, {"s_ref": z, "s_floor": cmp_.min_excursion, "s_cap": 2.0 * z,
+        # (a path logged exactly, with no presliding range: a thousandth of the travel, so that
+        # no logarithm meets a travel of 0)
+        z = max(cmp_.z_presliding, cmp_.min_excursion) or 1e-3 * float(np.ptp(cmp_.path)) or 1.0
+        return Term(name, {"s_ref": z, "s_floor": max(cmp_.min_excursion, 1e-3 * z), "s_cap": 2.0 * z,
                            "min_excursion": cmp_.min_excursion},
                     (("c1", "lin", -2.0, 2.0), ("c2", "lin", -1.0, 1.0)))
     if name == "presliding_stiffness":
@@ -2739,7 +2741,13 @@ def stiffness_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, 
     terms = plain.terms + extra
     u0 = np.concatenate([[math.log(plain.fit.g), math.log(k0)], plain.u] + [np.zeros(len(t.free)) for t in extra])
     fr = _fit(engine, terms, u0, mask, fit_k0=True, k0=k0)
-    return Alternative(fr, terms, fr.u[1:], " and ".join(HELD_STIFFNESS[n] for n in held), fit_k0=True)
+    return Alternative(fr, terms, fr.u[1:], held_said(held), fit_k0=True)
+
+
+def held_said(held: tuple) -> str:
+    """The stiffness effects ``held`` as a sentence lists them: "a, b and c"."""
+    said = [HELD_STIFFNESS[n] for n in held]
+    return ", ".join(said[:-1]) + (" and " if len(said) > 1 else "") + said[-1]
 
 
 # the friction candidates fitted with a presliding range following them (``range_alternative``):
@@ -3859,7 +3867,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
         held = held_stiffness(cur_terms, s)
         if held and any(EFFECTS[c].acts_on == "stiffness" for c in todo):
             say(0.1 + 0.8 * step / s.max_effects,
-                f"step {step + 1}: the alternative with {' and '.join(HELD_STIFFNESS[n] for n in held)}")
+                f"step {step + 1}: the alternative with {held_said(held)}")
             beside_stiffness = stiffness_alternative(engine, cmp_, plain, k0, allm, held)
 
         def judge(name: str, alt: Alternative) -> Evidence | None:

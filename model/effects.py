@@ -147,9 +147,9 @@ class Context:
                      lambda: np.log(np.maximum(np.abs(self.signal("velocity", effect)), key[0]) / key[1]))
 
     def log_travel(self, floor: float, cap: float, ref: float, min_excursion: float, effect: str) -> np.ndarray:
-        """ℓ = ln(clip(s, floor, cap)/ref), s the travel of the stroke each sample lies on (between
-        two reversals whose back-travel exceeds ``min_excursion``: ``stroke_travel``), kept for
-        the last two settings asked for (a travel-dependent stiffness's abscissa is fixed)."""
+        """ℓ = ln(clip(s, floor, cap)/ref), s the travel of the stroke before the one each sample
+        lies on (reversals whose back-travel exceeds ``min_excursion``: ``stroke_travel``), kept
+        for the last two settings asked for (a travel-dependent stiffness's abscissa is fixed)."""
         key = (float(floor), float(cap), float(ref), float(min_excursion))
 
         def make():
@@ -211,6 +211,7 @@ class Effect:
     # (amplitude, word below neutral, word above): which way a signed effect acts, said beside its
     # name — a contact that stiffens is a "cyclic_softening" with h > 0, which reads wrong alone
     sense: tuple[str, str, str] | None = None
+    ordered: tuple[tuple[str, str], ...] = ()  # (a, b): a parameter file's a must not exceed its b
 
     @property
     def param_names(self) -> tuple[str, ...]:
@@ -306,6 +307,9 @@ class Effect:
             if p.name not in values:
                 raise ParameterError(f"{path}.{p.name}: missing ({self.name} needs {', '.join(self.param_names)})")
             out[p.name] = p.check(values[p.name], f"{path}.{p.name}")
+        for a, b in self.ordered:
+            if out[a] > out[b]:
+                raise ParameterError(f"{path}.{a}: {out[a]:g} exceeds {b} {out[b]:g} ({self.name} needs {a} ≤ {b})")
         return out
 
 
@@ -357,11 +361,12 @@ RATE_STIFFNESS_LOG_MAX = 3.0  # |ln κ| at most: a factor e³ ≈ 20 either way,
 
 
 def _travel_stiffness(v, ctx):
-    # the presliding stiffness as a smooth function of the log of the travel of the stroke a
-    # sample lies on, κ = e^{c1·ℓ + c2·ℓ²}, ℓ = ln(clip(s, s_floor, s_cap)/s_ref): a contact that
-    # does not keep Masing's rule, which eq. (5)'s memory does — a Dahl-like one, whose stiffness
-    # after a reversal grows with the force it turned at, shows the model small loops softer than
-    # large ones. Strokes longer than s_cap end in gross sliding alike and count as s_cap.
+    # the presliding stiffness as a smooth function of the log of the travel of the stroke before
+    # (``stroke_travel``), κ = e^{c1·ℓ + c2·ℓ²}, ℓ = ln(clip(s, s_floor, s_cap)/s_ref): a contact
+    # that does not keep Masing's rule, which eq. (5)'s memory does — a Dahl-like one, whose
+    # stiffness after a reversal grows with the force it turned at, shows the model the branches
+    # after small loops softer than those after large ones. Strokes longer than s_cap end in
+    # gross sliding alike and count as s_cap (the record's first stroke too).
     ell = ctx.log_travel(v["s_floor"], v["s_cap"], v["s_ref"], v["min_excursion"], "travel_stiffness")
     return np.exp(np.clip(v["c1"] * ell + v["c2"] * ell * ell, -RATE_STIFFNESS_LOG_MAX, RATE_STIFFNESS_LOG_MAX))
 
@@ -428,8 +433,8 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
            ("velocity",), _rate_stiffness, "presliding cycles of one amplitude at several speeds, the slow ones "
            "repeated at the session's end", {"c1": 0.0, "c2": 0.0}),
     Effect("travel_stiffness", "the presliding spring's stiffness varies smoothly with the travel of the stroke "
-           "between two reversals, κ = exp(c1·ℓ + c2·ℓ²) with ℓ = ln(s/s_ref) (a contact that does not keep "
-           "Masing's rule: small loops softer or stiffer than large ones)", "stiffness",
+           "before the last reversal, κ = exp(c1·ℓ + c2·ℓ²) with ℓ = ln(s/s_ref) (a contact that does not keep "
+           "Masing's rule: its branches after small loops softer or stiffer than after large ones)", "stiffness",
            (EffectParam("c1", "1", -2.0, 2.0, "slope of ln κ against ln s"),
             EffectParam("c2", "1", -1.0, 1.0, "curvature of ln κ against ln s"),
             EffectParam("s_ref", "position", 0.0, 1e12, "stroke travel at which κ = 1", lo_open=True),
@@ -438,7 +443,7 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
                         lo_open=True),
             EffectParam("min_excursion", "position", 0.0, 1e12, "smallest back-travel counted as a reversal")),
            ("position",), _travel_stiffness, "presliding cycles of several amplitudes in a shuffled order, the "
-           "first ones repeated at the session's end", {"c1": 0.0, "c2": 0.0}),
+           "first ones repeated at the session's end", {"c1": 0.0, "c2": 0.0}, ordered=(("s_floor", "s_cap"),)),
     Effect("presliding_range", "the presliding range follows the friction effects' factor m as m^e (the "
            "presliding stiffness as m^(1−e)): e = 0, the spring stiffens with friction; e = 1, its stiffness "
            "stays and the range to break-away grows with friction; e < 0, the spring stiffens faster than "
@@ -507,18 +512,22 @@ def significant_reversals(x: np.ndarray, min_excursion: float = 0.0) -> np.ndarr
 
 
 def stroke_travel(x: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """For each sample of the path ``x``, the travel (max − min) of the stroke it lies on: the
-    samples between two steps of the running reversal count ``counts``
-    (``significant_reversals``, which steps at the turning points)."""
+    """For each sample of the path ``x``, the travel (max − min) of the stroke before the one it
+    lies on: strokes are the samples between two steps of the running reversal count ``counts``
+    (``significant_reversals``, which steps at the turning points), each ending at the turning
+    point the next starts at. The stroke before sets the force the contact turned at (a stroke
+    into sliding turns at break-away, a small loop near rest), so this is what a stiffness after a
+    reversal may follow, and it is known when the stroke starts. Infinite on the first stroke,
+    which has none before it in the record."""
     x = np.asarray(x, dtype=np.float64)
     if len(x) == 0:
         return x.copy()
     starts = np.r_[0, np.flatnonzero(np.diff(counts)) + 1]
     hi, lo = np.maximum.reduceat(x, starts), np.minimum.reduceat(x, starts)
-    # each stroke ends at the turning point the next one starts at
     hi[:-1] = np.maximum(hi[:-1], x[starts[1:]])
     lo[:-1] = np.minimum(lo[:-1], x[starts[1:]])
-    return np.repeat(hi - lo, np.diff(np.r_[starts, len(x)]))
+    before = np.r_[np.inf, (hi - lo)[:-1]]
+    return np.repeat(before, np.diff(np.r_[starts, len(x)]))
 
 
 def context_of(time, position=None, load=None, min_excursion: float = 0.0) -> Context:

@@ -47,18 +47,24 @@ def test_every_effect_without_its_amplitudes_is_a_factor_of_one_and_with_them_is
         assert {k: off[k] for k in v if k not in e.neutral} == {k: v[k] for k in v if k not in e.neutral}
 
 
-def test_travel_stiffness_gives_each_stroke_the_power_of_its_own_travel():
-    # loops of 1, 4 and 2 (position units) then a long stroke: each sample's κ is
-    # (s/s_ref)^c1 of the travel of the stroke it lies on, turning point to turning point, the
-    # long stroke counted as s_cap and a back-travel under min_excursion no reversal at all
-    legs = [(0.0, 1.0), (1.0, -3.0), (-3.0, -1.0), (-1.0, -1.05), (-1.05, 20.0)]
+def test_travel_stiffness_gives_each_stroke_the_power_of_the_travel_before_it():
+    # strokes 0→1 (travel 1), 1→−3 (4), −3→−2.9 (0.1), −2.9→−5 (2.1), −5→−3→−3.05→20 (the 0.05
+    # back-travel is no reversal): each sample's κ is (s/s_ref)^c1 of the stroke before its own,
+    # the first stroke's (none before it) counted as s_cap, the 0.1 one as s_floor
+    legs = [(0.0, 1.0), (1.0, -3.0), (-3.0, -2.9), (-2.9, -5.0), (-5.0, -3.0), (-3.0, -3.05), (-3.05, 20.0)]
     x = np.concatenate([np.linspace(a, b, 41)[(1 if i else 0):] for i, (a, b) in enumerate(legs)])
     ctx = Context(time=np.arange(x.size, dtype=float), position=x)
-    k = EFFECTS["travel_stiffness"].scale({"c1": 0.5, "c2": 0.0, "s_ref": 2.0, "s_floor": 0.5, "s_cap": 8.0,
-                                           "min_excursion": 0.1}, ctx)
-    # strokes: 0→1 (1), 1→−3 (4), −3→−1.05→20 (the 0.05 back-travel is no reversal: 23, capped at 8)
-    expected = np.concatenate([np.full(40, 0.5 ** 0.5), np.full(40, 2.0 ** 0.5), np.full(x.size - 80, 4.0 ** 0.5)])
-    np.testing.assert_allclose(k, expected, rtol=1e-12)
+    values = {"c1": 0.5, "c2": 0.0, "s_ref": 2.0, "s_floor": 0.5, "s_cap": 8.0, "min_excursion": 0.09}
+    k = EFFECTS["travel_stiffness"].scale(values, ctx)
+    before = [8.0, 1.0, 4.0, 0.5, 2.1]
+    lengths = [40, 40, 40, 40, x.size - 160]
+    np.testing.assert_allclose(k, np.repeat([(s / 2.0) ** 0.5 for s in before], lengths), rtol=1e-12)
+    # a path that never turns has no stroke before: s_cap throughout
+    line = Context(time=np.arange(50.0), position=np.linspace(0.0, 5.0, 50))
+    np.testing.assert_allclose(EFFECTS["travel_stiffness"].scale(values, line), 2.0)
+    # a file whose floor lies above its cap is refused, naming the field
+    with pytest.raises(ParameterError, match=r"e\.params\.s_floor: 9 exceeds s_cap 8"):
+        validate_effect_entry({"name": "travel_stiffness", "params": {**values, "s_floor": 9.0}}, "e")
 
 
 def test_position_ripple_takes_its_values_at_known_phases_at_each_wavelength_asked_in_turn():
