@@ -20,8 +20,9 @@ out-of-sample evidence, add it, refit, look again.
    free steady curve (``FreeSteadyCurve``: any correction to S(v), a
    level of its own at rest, and for friction taken from an applied force a free inertia),
    which is linear and profiled out of every evaluation. A stiffness effect's alternative also
-   holds a stiffness varying with speed and, beside a friction effect already in the model, a
-   presliding range following that effect (``stiffness_alternative``, never named).
+   holds a stiffness varying with speed, one varying with the travel of the stroke before and,
+   beside a friction effect already in the model, a presliding range following that effect
+   (``stiffness_alternative``, never named).
 3. **Candidates** (``model.effects.EFFECTS``): each is screened (its shape parameter — time
    constant, wavelength from the spectrum of the residual against position, reversal count —
    chosen on a grid with the amplitude solved by a secant step), then fitted with the level by
