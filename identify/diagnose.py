@@ -2721,10 +2721,11 @@ def stiffness_alternative(engine: Engine, cmp_: Comparison, plain: Alternative, 
     softening stayed named on one of its two controls — README, recordings made apart.)
 
     ``travel_stiffness``: a presliding stiffness that varies smoothly with the travel of the
-    stroke between two reversals. Eq. (5)'s memory keeps Masing's rule, every branch the same
-    curve from its reversal; a contact that does not (a Dahl-like one, whose stiffness after a
-    reversal grows with the force it turned at) shows the model small loops softer than large
-    ones, and where a session's loops grow with the number of reversals (presliding cycles of
+    stroke before the last reversal (which sets the force the contact turned at, and is known
+    when the stroke starts). Eq. (5)'s memory keeps Masing's rule, every branch the same curve
+    from its reversal; a contact that does not (a Dahl-like one, whose stiffness after a
+    reversal grows with the force it turned at) shows the model the branches after small loops
+    softer than those after large ones, and where a session's loops grow with the number of reversals (presliding cycles of
     rising amplitude, then strokes) that was credited to a hardening: a linear rig made apart,
     Dahl presliding, named one on its control (h 0.13, n_c 5.8) and nothing once its loops'
     amplitudes were shuffled.
