@@ -118,7 +118,11 @@ class Settings:
     max_effects: int = 3
     free_steady: bool = True  # the alternative holds a free correction to S(v) (FreeSteadyCurve)
     rate_nuisance: bool = True  # a stiffness effect is judged beside a stiffness varying with speed (stiffness_alternative)
-    travel_nuisance: bool = True  # … and beside one varying with the stroke's travel (stiffness_alternative)
+    # … and beside one varying with the travel of the stroke before (stiffness_alternative). Off by
+    # default: it takes a Dahl rig's false hardening away, but on the hidden-effect suite it named
+    # two false softenings on controls, and it named one on a servo stage's control and beside a
+    # telescope mount's load, recordings made apart (README, "Where it stands")
+    travel_nuisance: bool = False
     range_nuisance: bool = True  # … and, beside a friction effect, a presliding range following it (stiffness_alternative)
     range_with_friction: bool = True  # a drift or a load is judged also with a presliding range following it (range_alternative)
     refit_curve: bool = True  # the alternative reshapes a piecewise-linear F_d segment by segment (refit_transition)
