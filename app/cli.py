@@ -243,15 +243,21 @@ def say_reading(rec) -> None:
 
 
 def held_inertia_note(path: str | None, params, drive: str) -> str:
-    """A line where the parameter file's inertia was held by the fit, not estimated (its
+    """A line where the parameter file's inertia is the built-in default (the file has none,
+    ``FrictionParams.defaulted``) or was held by the fit, not estimated (its
     ``provenance.held``: a recording of measured friction does not determine it, and the fit
     keeps the built-in paper's 5 kg·m²), or "": a joint with 0.9 N·m of friction, simulated along
     its own motion, read ±91 N·m of applied force from that 5, and nothing said."""
     held = (params.provenance or {}).get("held") or {}
-    if not path or "inertia" not in held:
-        return ""
     what = ("the applied_force column (friction + inertia × acceleration, eq. (8)) depends on it, the friction "
             "column does not" if drive == "displacement" else "the motion simulated depends on it")
+    if path and "inertia" in params.defaulted:
+        # a file that leaves the inertia out holds the built-in 5 kg·m², another machine's (a
+        # spindle of 0.004 kg·m², simulated from its torque, turned a hundredth of its log's angle)
+        return (f"note: {path}: no inertia in the file: the built-in default {params.inertia:g} is used, not this "
+                f"machine's: {what}; set this machine's inertia in the file")
+    if not path or "inertia" not in held:
+        return ""
     return (f"note: {path}: inertia {params.inertia:g} was held by the fit, not estimated (provenance.held.inertia "
             f"says why): {what}; set this machine's inertia in the file")
 
@@ -471,6 +477,8 @@ def cmd_fit(args) -> int:
     with outputs:
         outputs.write_text(args.out, params_to_yaml(res.params.validate()))
     print(f"parameters -> {args.out}")
+    for said in res.warnings:  # last, where it is read: the whole fit rests on it
+        print(f"warning: {said}", file=sys.stderr)
     return 0
 
 

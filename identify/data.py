@@ -417,6 +417,18 @@ def _speed_hint(rec: "Recording", kind: str | None) -> str:
             f"e.g. " + " or ".join(f"'{col} [{w}]'" for w in units))
 
 
+_UNCLOSED_RE = re.compile(r"^(.*?\S)\s*([\[(])\s*([^\])]+?)\s*$")
+
+
+def _unit_unclosed(name: str) -> str | None:
+    """The header ``name`` with its unit's bracket closed, where it opens one and never closes
+    it ('torque [mN*m' -> 'torque [mN*m]'); None otherwise."""
+    m = _UNCLOSED_RE.match(str(name).strip())
+    if m is None or _UNIT_RE.match(str(name).strip()):
+        return None
+    return str(name).strip() + ("]" if m.group(2) == "[" else ")")
+
+
 def _split_header(name: str) -> tuple[str, str | None]:
     """'Position [mm]' -> ('position', 'mm'); 'Time (s)' -> ('time', 's')."""
     m = _UNIT_RE.match(str(name).strip())
@@ -800,6 +812,11 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                 unit_of(headers[col][1], sig) or headers[col][1].strip()):
             # as asked, and said: a header's ms read as s made a 29-hour session of a 106 s one, unsaid
             notes.append(f"{col}: read in {asked} as --units asks, not in the header's {headers[col][1]}")
+        if unit is None and (closed := _unit_unclosed(col)) is not None:
+            # a unit whose bracket is not closed is no unit to the header's reader: read as SI, a
+            # spindle's torque written '[mN*m' came out a thousand times too large, said in a note
+            raise DataError(f"{path}: column {col!r}: the bracket around its unit is not closed: write {closed!r} "
+                            f"(or give the unit with --units {sig}=<unit>)")
         if col == cof:
             # a friction coefficient: dimensionless (a header may say "-" or "1"), N times it is the friction
             if unit is not None and unit.strip() not in ("-", "1", "—", ""):

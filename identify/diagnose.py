@@ -3040,14 +3040,18 @@ class Diagnosis:
         return [f"{n} ({w})" if (w := EFFECTS[n].sense_of(written.get(n, {}))) else n for n in self.effects]
 
     def written_effects(self) -> list:
-        """[{name, params, sd}] of every effect in the model written, as the file has them: the
-        last step's model, every effect refitted together — with two effects the first one's
-        values and σ there differ from its own step's line."""
+        """[{name, params, sd, held}] of every effect in the model written, as the file has them:
+        the last step's model, every effect refitted together — with two effects the first one's
+        values and σ there differ from its own step's line. ``held``: why a parameter has no σ
+        (not determined there, as the file's provenance.held says; a drift beside a load read
+        b 0.285 ± 3.1 there, written without a σ, and a reader of the JSON saw only an empty sd)."""
         if not self.effects or self.params_after is None:
             return []
         unc = self.params_after.uncertainty
+        held = (self.params_after.provenance or {}).get("held") or {}
         return [{"name": e["name"], "params": dict(e["params"]),
-                 "sd": {k: unc[f"effects.{i}.params.{k}"] for k in e["params"] if f"effects.{i}.params.{k}" in unc}}
+                 "sd": {k: unc[f"effects.{i}.params.{k}"] for k in e["params"] if f"effects.{i}.params.{k}" in unc},
+                 "held": {k: held[f"effects.{i}.params.{k}"] for k in e["params"] if f"effects.{i}.params.{k}" in held}}
                 for i, e in enumerate(self.params_after.effects)]
 
     def summary(self) -> dict:
@@ -4688,22 +4692,47 @@ def drivable(params: FrictionParams, has_load: bool) -> tuple[FrictionParams, tu
     return params.replace(effects=tuple(e for e in params.effects if e["name"] not in out)), out
 
 
-def gap_by_regime(rec: Recording, params: FrictionParams) -> str:
+@dataclass
+class GapAsGiven:
+    """How far a parameter set leaves a recording's friction, as a diagnosis compares the model
+    as given (``gap_as_given``): the RMS over the samples it scores, against its noise floor and
+    per regime."""
+
+    total: float
+    noise: float
+    regimes: dict  # regime name: RMS there
+    start: float  # the time scoring starts (``Comparison.scored``)
+    unit: str = ""
+
+    def said(self) -> str:
+        """In words, as ``fit`` reports it."""
+        u = self.unit
+        parts = [f"{k} {v:.3g}" for k, v in self.regimes.items()]
+        return (f"RMS {self.total:.3g} {u}" + (f" ({self.total / self.noise:.1f} × the noise floor {self.noise:.3g} {u})"
+                                              if self.noise > 0 else "")
+                + f"; per regime ({u}): {', '.join(parts)} (from {self.start:.4g} s on)")
+
+
+def gap_as_given(rec: Recording, params: FrictionParams) -> GapAsGiven:
     """How far ``params`` leaves the recording's friction, compared as a diagnosis compares the
-    model as given (``scored_comparison``, ``friction_compared``, beside ``model_nuisance``),
-    overall against the noise floor and per regime, in words: what a fit says of itself in
-    friction, whatever its own cost was (a feed axis made apart was refined to 0.4 µm of
-    position while its presliding friction stood 9 N off, which only `diagnose` then said)."""
+    model as given (``scored_comparison``, ``friction_compared``, beside ``model_nuisance``):
+    what a fit says of itself in friction, whatever its own cost was (a feed axis made apart was
+    refined to 0.4 µm of position while its presliding friction stood 9 N off, which only
+    `diagnose` then said), and the gap the explorer's proposals state (there the RMS over every
+    sample, the start whose memory the log does not show included, had read 0.018 N·m for a
+    spindle's fit that `fit` and `diagnose` put at 0.0023)."""
     cmp_ = scored_comparison(rec, params, Settings())
     m = cmp_.scored
     r = cmp_.measured - friction_compared(rec, params, cmp_).model
     r = r - model_nuisance(r, m, cmp_.memory_offset, cmp_.acceleration).correction
-    unit = params.units.get("force", "")
-    parts = [f"{k} {_rms(r[w & m]):.3g}" for k, w in regime_masks(cmp_).items() if k != "all" and (w & m).any()]
-    total = _rms(r[m])
-    return (f"RMS {total:.3g} {unit}" + (f" ({total / cmp_.noise:.1f} × the noise floor {cmp_.noise:.3g} {unit})"
-                                         if cmp_.noise > 0 else "")
-            + f"; per regime ({unit}): {', '.join(parts)} (from {float(cmp_.time[np.argmax(m)]):.4g} s on)")
+    regimes = {k: _rms(r[w & m]) for k, w in regime_masks(cmp_).items() if k != "all" and (w & m).any()}
+    return GapAsGiven(_rms(r[m]), float(cmp_.noise), regimes, float(cmp_.time[np.argmax(m)]),
+                      params.units.get("force", ""))
+
+
+def gap_by_regime(rec: Recording, params: FrictionParams) -> str:
+    """``gap_as_given`` in words."""
+    return gap_as_given(rec, params).said()
 
 
 def friction_compared(rec: Recording, params: FrictionParams, cmp_: Comparison | None = None) -> FrictionCompared:

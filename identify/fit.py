@@ -53,6 +53,8 @@ class FitResult:
     decisions: dict = field(default_factory=dict)  # side -> markov.SideDecision
     refinement: dict = field(default_factory=dict)
     branches_tried: int = 0  # branches the transition curve's likelihood was maximised over (0: never ran)
+    # what must be read before the result is used, one line each (``force_like_friction``)
+    warnings: list = field(default_factory=list)
 
     @property
     def status(self) -> dict:
@@ -493,6 +495,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     start = ("from the starting parameter file" if base is not None else
              "from the built-in default, the paper's KUKA IR 361 axis 1 in its units (give --params with this "
              "machine's values)")
+    # σ1 and the inertia a starting file gave: one that left them out holds the built-in
+    # defaults (``FrictionParams.defaulted``), another machine's as much as without a file
+    given = {k: base is not None and k not in base.defaulted for k in ("sigma1", "inertia")}
+    kept_from = {k: start if given[k] or base is None else f"at the built-in default (the starting parameter file has "
+                 f"no {k}: give this machine's)" for k in given}
     notes: list = []
     held: dict = {}
     if p.effects:
@@ -766,9 +773,9 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     # that importing the fit does not load the optimiser
     from .refine import STUCK_DAMPING_RATIO, sigma1_at_damping_ratio, sigma1_at_data_scale
 
-    reading_sigma1 = None if base is not None else sigma1_at_data_scale(p.stribeck, levels)
-    p, inertia_sd = _with_inertia(p, recordings, base is not None, held, notes, start, reading_sigma1)
-    if base is None and not any(pr.friction is not None for pr in preps):
+    reading_sigma1 = None if given["sigma1"] else sigma1_at_data_scale(p.stribeck, levels)
+    p, inertia_sd = _with_inertia(p, recordings, given["inertia"], held, notes, kept_from["inertia"], reading_sigma1)
+    if not given["sigma1"] and not any(pr.friction is not None for pr in preps):
         # friction taken from an applied force alone (eq. (8)): the refinement below does not
         # estimate σ1 (force ramps do not determine it) but simulates with it, and so does the
         # diagnosis: hold it at the stuck plant's scale, not at the paper's robot joint's
@@ -778,7 +785,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                           f"slope of F_d at 0; I = {p.inertia:.4g}), not at the built-in {p.sigma1:.4g}, another "
                           f"machine's (give --params with this machine's)")
         p = p.replace(sigma1=s1)
-    held.setdefault("sigma1", f"not estimated by this fit: kept {start}")
+    held.setdefault("sigma1", f"not estimated by this fit: kept {kept_from['sigma1']}")
 
     unc = {} if inertia_sd is None else {"inertia": inertia_sd}
     widened = {}  # "stribeck.<side>.<name>" -> √(χ²/dof) its σ were widened by
@@ -811,13 +818,14 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
 
     # the refinement starts from this fit's σ (a parameter it cannot move keeps them)
     res = FitResult(p.replace(uncertainty=unc), stribeck_fit, tfit, levels, n_br, notes, datasets,
-                    {pr.source: pr.th for pr in preps}, held, decisions, branches_tried=tried)
+                    {pr.source: pr.th for pr in preps}, held, decisions, branches_tried=tried,
+                    warnings=force_like_friction(recordings, notes))
     if refine:
         try:
             from .refine import refine_fit
 
             say(0.7, "output-error refinement: trying")
-            res = refine_fit(res, preps, sigma1_given=base is not None)
+            res = refine_fit(res, preps, sigma1_given=given["sigma1"])
             if not (res.refinement or {}).get("done"):
                 say(0.95, "output-error refinement: not done (the report says why)")
             elif (chi2_red := res.refinement.get("chi2_reduced", 1.0)) > MISFIT_CHI2_RED:
@@ -991,6 +999,24 @@ def dropped_knots(z: np.ndarray, drop: list, refit, notes: list, why: str):
     notes.append(why)
     z = np.delete(z, drop)
     return z, refit(z)
+
+
+def force_like_friction(recordings: list[Recording], notes: list) -> list[str]:
+    """One line per recording whose column read as the applied force carried no inertial term
+    (I·ẍ of eq. (8)), as measured friction does (``diagnose.recording_inertia`` says so in its
+    inertia note, unless the column's name says it is applied): the whole fit took it as applied,
+    which a note alone had not made plain (a rig's torque sensor, named `torque`, read so: its
+    transition curve not resolved, the paper's held, and a 20 % drift lost in the noise floor
+    that curve made)."""
+    from .diagnose import NAME_IT_FRICTION
+
+    out = []
+    for r in recordings:
+        if any(n.startswith(f"{r.source}: inertia ") and NAME_IT_FRICTION in n for n in notes):
+            col = r.columns.get("force", "force")
+            out.append(f"{r.source}: column {col!r} was read as the applied force, but it carries no inertial term "
+                       f"(I·ẍ, eq. (8)) — measured friction carries none: {NAME_IT_FRICTION}, and fit again")
+    return out
 
 
 def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: bool, held: dict, notes: list,

@@ -520,6 +520,14 @@ class FrictionParams:
         object.__setattr__(self, "provenance", freeze(self.provenance or {}))
 
     @property
+    def defaulted(self) -> tuple:
+        """The dimensioned scalars (σ1, the inertia) this set holds at their built-in defaults
+        because its file, in the paper's units, left them out (``from_dict``): the paper's robot
+        joint's σ1 and a made-up 5 kg·m², not this machine's. Kept in ``provenance.defaulted``,
+        so that a set written back out still says so while the value is the default."""
+        return tuple((self.provenance or {}).get(DEFAULTED) or ())
+
+    @property
     def outer_loop_span(self) -> float:
         """The largest S(v) − F_b the memory asks of F_d: from one side's largest |S(v)| (F_s,
         or F_c where friction rises with speed) to the other's."""
@@ -622,6 +630,14 @@ class FrictionParams:
         prov = d.get("provenance") or {}
         if not isinstance(prov, Mapping):
             raise ParameterError("provenance: expected a mapping")
+        # the dimensioned scalars the file leaves to the built-in defaults (a spindle's file without
+        # `inertia:` had 5 kg·m² simulated and kept by a fit against its log's 0.004, unsaid); a
+        # file written from such a set keeps the mark while its value is still the default
+        marked = prov.get(DEFAULTED)
+        marked = set(marked) if isinstance(marked, (list, tuple)) else set()
+        left = [f.name for f in _scalar_fields(cls) if f.name in DEFAULTABLE
+                and (f.name not in scalars or (f.name in marked and scalars[f.name] == f.default))]
+        prov = {**{k: v for k, v in prov.items() if k != DEFAULTED}, **({DEFAULTED: left} if left else {})}
         p = cls(model=model, stribeck=stribeck, transition_curve=tc, units=units, effects=tuple(effects),
                 uncertainty={str(k): _number(f"uncertainty.{k}", v) for k, v in unc.items()},
                 provenance=prov, **scalars)
@@ -633,6 +649,10 @@ class FrictionParams:
 
             p = p.replace(sigma0=lugre_sigma0_from_transition_curve(p))
         return p.validate()
+
+
+DEFAULTED = "defaulted"  # provenance: the scalars a file left to their built-in defaults (``FrictionParams.defaulted``)
+DEFAULTABLE = ("sigma1", "inertia")  # the dimensioned scalars a file in the paper's units may leave out
 
 
 def _stribeck_from(st) -> Stribeck:

@@ -406,12 +406,12 @@ def fit_start(current, rec: Recording):
 
 
 def gap(rec: Recording, p) -> float | None:
-    """RMS of the measured minus the model's friction, compared as the diagnosis compares them
-    (``identify.diagnose.friction_compared``), or None where it cannot be simulated."""
-    from ...identify.diagnose import friction_compared
+    """RMS of the measured minus the model's friction, the gap `fit` reports and a diagnosis
+    starts from (``identify.diagnose.gap_as_given``), or None where it cannot be simulated."""
+    from ...identify.diagnose import gap_as_given
 
     try:
-        return friction_compared(rec, p).rms
+        return gap_as_given(rec, p).total
     except (FrictionError, ValueError, FloatingPointError, TypeError):
         return None
 
@@ -435,7 +435,7 @@ def fit_summary(res) -> str:
     held = dict(getattr(res, "held", None) or {})
     status = res.status() if callable(getattr(res, "status", None)) else {}
     est = sorted(k for k, v in status.items() if v == "estimated")
-    lines = []
+    lines = [f"⚠ {as_markdown_text(without_cli_hints(w))}" for w in getattr(res, "warnings", ())]
     if est:
         lines.append(f"**Estimated** ({len(est)}): " + ", ".join(est))
     else:

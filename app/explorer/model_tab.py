@@ -168,7 +168,9 @@ class ModelTab:
             self.gui_warn.content = f"⚠ not applied — {error}"
             # and where the user is looking: the warning sits under the Model folder, out of view
             # while a knot further down is edited
-            self.ctx.notify("Not applied", f"{f.label}: {error}", "red")
+            # (a typed entry's reason names the field already: "Fs⁺: Fs⁺: 'abc' is not a number")
+            said = error if error.startswith(f"{f.label}:") else f"{f.label}: {error}"
+            self.ctx.notify("Not applied", said, "red")
             return error
         self.ctx.set_params(p, "edit")
         return None

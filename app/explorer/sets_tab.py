@@ -167,7 +167,12 @@ class SetsTab:
             self._remember_edits()
             ctx.session.add(f"loaded {f.name}", p)
             ctx.set_params(p, "loaded")
-            ctx.status(f"Loaded **{f.name}**.")
+            # a file in the paper's units may leave σ1 and the inertia out: said, since the
+            # built-in values are another machine's (a spindle's 0.004 kg·m² became 5, unsaid)
+            left = ", ".join(f"{k} {getattr(p, k):g}" for k in p.defaulted)
+            ctx.status(f"Loaded **{f.name}**." + (f" ⚠ It does not give {' or '.join(p.defaulted)}: the built-in "
+                                                  f"defaults are used ({left}), not this machine's (a fit started "
+                                                  f"from it takes them as unknown)" if left else ""))
 
         @self.gui_export.on_click
         def _(event) -> None:

@@ -74,6 +74,19 @@ def test_a_recording_given_twice_to_fit_is_refused_whatever_it_is_called(tmp_pat
     assert os.listdir(tmp_path) == []
 
 
+def test_a_unit_whose_bracket_is_not_closed_is_refused_not_read_as_si(tmp_path, capsys):
+    # 'torque [mN*m' had been read as a header without a unit: SI, a spindle's torque a thousand
+    # times too large, said only in a note
+    src = open(SAMPLE).read().splitlines()
+    assert src[0] == "time,position,torque"
+    bad = tmp_path / "unclosed.csv"
+    bad.write_text("\n".join(["time [s],position [rad],torque [mN*m"] + src[1:]) + "\n")
+    rc, _, err = run(capsys, "fit", bad, "-o", tmp_path / "p.yaml")
+    assert rc == 2 and one_line(err) == (f"error: {bad}: column 'torque [mN*m': the bracket around its unit is not "
+                                         f"closed: write 'torque [mN*m]' (or give the unit with --units force=<unit>)")
+    assert not (tmp_path / "p.yaml").exists()
+
+
 def test_output_that_is_read_only_or_a_directory(tmp_path, capsys):
     ro = tmp_path / "ro.yaml"
     ro.write_text("keep me")

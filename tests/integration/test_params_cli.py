@@ -132,6 +132,22 @@ def test_cli_simulate_says_an_inertia_the_fit_held_and_what_depends_on_it(tmp_pa
     np.testing.assert_allclose((a["applied_force"] - b["applied_force"])[inner], 4.5 * acc[inner], atol=0.1)
 
 
+def test_cli_simulate_says_a_built_in_inertia_the_file_left_out(tmp_path, capsys, kuka):
+    # a file in the paper's units may leave the inertia out: it is then the built-in 5, another
+    # machine's, and a simulation driven by force says so; the same file with `inertia: 5` does not
+    t = np.arange(0, 1, 1e-3)
+    rec = tmp_path / "rec.csv"
+    pd.DataFrame({"time": t, "force": 20.0 * np.sin(2 * np.pi * t)}).to_csv(rec, index=False)
+    d = kuka.to_dict()
+    for name, text in (("given", yaml.safe_dump(d)), ("left", yaml.safe_dump({k: v for k, v in d.items() if k != "inertia"}))):
+        (tmp_path / f"{name}.yaml").write_text(text)
+        rc, _, err = cli(capsys, "simulate", "--input", rec, "--drive", "force", "--params", tmp_path / f"{name}.yaml",
+                         "--out", tmp_path / f"{name}.csv")
+        assert rc == 0, err
+        assert ("no inertia in the file: the built-in default 5 is used, not this machine's" in err) == (name == "left"), err
+    np.testing.assert_array_equal(pd.read_csv(tmp_path / "given.csv")["position"], pd.read_csv(tmp_path / "left.csv")["position"])
+
+
 def test_cli_simulate_reads_only_the_columns_its_drive_uses(tmp_path, capsys):
     # a logged friction with a gap does not stop a simulation driven by the position; a dropout
     # in the position leaves its row out, said; a position that is mostly gaps stops it, in one

@@ -108,3 +108,5 @@ def test_a_load_beside_a_ripple_is_written_as_the_report_lists_it_within_its_sig
     assert "not determined" in p.provenance["held"][f"effects.{i}.params.phase2"]
     assert f"effects.{i}.params.phase" in p.uncertainty  # the fundamental's is
     assert "phase2" in listed["position_ripple"]["params"] and "phase2" not in listed["position_ripple"]["sd"]
+    # and the JSON says why beside the values, as the file's provenance.held does
+    assert listed["position_ripple"]["held"]["phase2"] == p.provenance["held"][f"effects.{i}.params.phase2"]

@@ -101,3 +101,36 @@ def test_fit_holds_the_turntables_inertia_and_sigma1_at_its_own_scale_not_the_pa
         assert 0.5 < p.sigma1 / (2 * 0.3 * math.sqrt(T.SIGMA0 * T.J)) < 2.0, p.sigma1
     assert fits[0].params.inertia == pytest.approx(fits[1].params.inertia, rel=1e-3)
     assert fits[0].params.sigma1 == pytest.approx(fits[1].params.sigma1, rel=1e-3)
+
+
+def test_a_starting_file_without_inertia_or_sigma1_is_no_machines_inertia(tmp_path, control):
+    # a file in the paper's units (rad, N·m, s) may leave σ1 and the inertia out; they are then
+    # the built-in 1500 and 5, another machine's, and `fit --params` takes them as unknown, as
+    # without a file: the turntable's inertia is read beside the model, 0.035 kg·m², not kept at
+    # 5 (a spindle's fit had kept 5 against its log's 0.004). A file that gives 5 has it kept
+    import yaml
+
+    from leuven_friction.identify.data import load_recording
+    from leuven_friction.identify.fit import fit_recordings
+    from leuven_friction.identify.paramfile import params_from_yaml, params_to_yaml
+
+    T.write(tmp_path / "tt.csv", control)
+    rec = load_recording(tmp_path / "tt.csv")
+    first = fit_recordings([rec], refine=False).params
+    d = yaml.safe_load(params_to_yaml(first.replace(provenance={})))
+    assert d["units"] == {"position": "rad", "force": "N*m", "time": "s"}  # the paper's
+    given = params_from_yaml(yaml.safe_dump({**d, "inertia": 5.0, "sigma1": 1500.0}))
+    for k in ("inertia", "sigma1"):
+        d.pop(k)
+    left_out = params_from_yaml(yaml.safe_dump(d))
+    assert left_out.defaulted == ("sigma1", "inertia") and given.defaulted == ()
+    assert (left_out.inertia, left_out.sigma1) == (given.inertia, given.sigma1) == (5.0, 1500.0)
+    # the mark stays while the value is the built-in one, written out and read back
+    assert params_from_yaml(params_to_yaml(left_out)).defaulted == ("sigma1", "inertia")
+    from_left_out = fit_recordings([rec], base=left_out, refine=False)
+    assert from_left_out.params.inertia == pytest.approx(0.035, rel=0.1)
+    assert "beside the model fitted here" in from_left_out.held["inertia"], from_left_out.held["inertia"]
+    assert "damping ratio" in from_left_out.held["sigma1"]
+    from_given = fit_recordings([rec], base=given, refine=False)
+    assert from_given.params.inertia == 5.0 and "kept from the starting parameter file" in from_given.held["inertia"]
+    assert from_given.warnings == from_left_out.warnings == []  # an applied torque: it carries I·ẍ
