@@ -217,7 +217,39 @@ def cmd_simulate(args) -> int:
     print(f"{args.input} driven by {args.drive} ({params.model}): {len(r)} rows -> {args.out}{_units_said(params, rec)}")
     if said := start_state_note(params.model):
         print(f"  {said}")
+    if args.drive == "displacement" and not args.smooth_path and (said := encoder_path_note(rec, params)):
+        print(f"  {said}")
     return 0
+
+
+def encoder_path_note(rec, params) -> str:
+    """Where a displacement drive runs along a position logged in encoder steps coarse for the
+    model: a step ENCODER_COARSE or more of its presliding range (the model follows each step,
+    its presliding force jumping with it), or σ1 × one step per sample ENCODER_COARSE or more of
+    F_s (σ1·dz/dt jumping as the velocity does, between 0 and a step per sample) — said, with
+    the option that drives along the path smoothed (a spindle's 2¹⁶-count encoder, σ1 = 1.76
+    N·m·s/rad, read friction peaks of twice its F_s, unsaid); "" otherwise."""
+    import numpy as np
+
+    from ..identify.diagnose import presliding_range
+    from ..identify.segment import detect_noise
+
+    step = getattr(detect_noise(np.asarray(rec.position, dtype=float)), "step", None)
+    if not step or params.model not in ("leuven", "lugre"):
+        return ""
+    z_p = presliding_range(params)
+    jump = params.sigma1 * step / float(np.median(np.diff(rec.time)))
+    fs = max(abs(params.stribeck.positive.Fs), abs(params.stribeck.negative.Fs))
+    if step < ENCODER_COARSE * z_p and jump < ENCODER_COARSE * fs:
+        return ""
+    u = params.units
+    return (f"the position moves in steps of {step:.3g} {u.position} (an encoder's), {step / z_p:.2g} of the model's "
+            f"presliding range {z_p:.3g}: the model follows each step, its presliding force jumping with it, and "
+            f"σ1·dz/dt jumps by up to {jump:.3g} {u.force} ({jump / fs:.2g} × F_s) as the velocity does between 0 "
+            f"and a step per sample; --smooth-path drives along the path smoothed as diagnose compares it")
+
+
+ENCODER_COARSE = 0.1  # an encoder step this fraction of the presliding range, or σ1 × a step per sample of F_s, is said
 
 
 def start_state_note(model: str) -> str:

@@ -9,7 +9,7 @@ import yaml
 
 from leuven_friction.app.cli import main
 from leuven_friction.identify.paramfile import load_params, save_params
-from leuven_friction.model import FrictionParams, ParameterError, default_params, simulate_force
+from leuven_friction.model import FrictionParams, ParameterError, default_params, simulate_displacement, simulate_force
 
 
 def cli(capsys, *args):
@@ -146,6 +146,36 @@ def test_cli_simulate_says_a_built_in_inertia_the_file_left_out(tmp_path, capsys
         assert rc == 0, err
         assert ("no inertia in the file: the built-in default 5 is used, not this machine's" in err) == (name == "left"), err
     np.testing.assert_array_equal(pd.read_csv(tmp_path / "given.csv")["position"], pd.read_csv(tmp_path / "left.csv")["position"])
+
+
+def test_cli_simulate_says_when_it_drives_along_encoder_steps(tmp_path, capsys, kuka):
+    # along a position logged in encoder steps the velocity jumps between 0 and a step per sample,
+    # and σ1·dz/dt with it, and a step coarse for the presliding range makes F_d jump: said where
+    # either is a tenth (of F_s, of the range) or more (the paper's 1.6e-5 rad encoder at 500 Hz:
+    # σ1 × a step per sample 1500 × 8e-3 = 12 N·m, 0.19 × 63), with the option that smooths the
+    # path; not for a finer encoder (2e-7 rad: 0.15 N·m), nor with it
+    t = np.arange(0, 4, 2e-3)
+    x = 0.02 * np.sin(2 * np.pi * t / 4)
+    said, friction = {}, {}
+    for step in (1.6e-5, 2e-7):
+        rec = tmp_path / f"steps{step:g}.csv"
+        pd.DataFrame({"time": t, "position": np.round(x / step) * step}).to_csv(rec, index=False)
+        for extra in ((), ("--smooth-path",)):
+            out = tmp_path / f"o{step:g}{len(extra)}.csv"
+            rc, stdout, err = cli(capsys, "simulate", "--input", rec, "--drive", "displacement", *extra, "--out", out)
+            assert rc == 0, err
+            said[(step, bool(extra))] = "(an encoder's)" in stdout
+            friction[(step, bool(extra))] = pd.read_csv(out)["friction_force"].to_numpy()
+            if step == 1.6e-5 and not extra:
+                assert "steps of 1.6e-05 rad" in stdout and "by up to 12 N*m (0.19 × F_s)" in stdout, stdout
+    assert said == {(1.6e-5, False): True, (1.6e-5, True): False, (2e-7, False): False, (2e-7, True): False}
+    # what it says is there: along the coarse steps the friction departs from the one along the
+    # motion itself, unquantised, by a fifth of F_s (63 N·m) and more (18 N·m), along the finer
+    # encoder's by under a tenth (3.5 N·m, at a reversal)
+    exact = simulate_displacement(kuka, t, x).friction_force
+    fs = -kuka.stribeck.negative.Fs
+    assert np.max(np.abs(friction[1.6e-5, False] - exact)) > 0.2 * fs
+    assert np.max(np.abs(friction[2e-7, False] - exact)) < 0.1 * fs
 
 
 def test_cli_simulate_reads_only_the_columns_its_drive_uses(tmp_path, capsys):
