@@ -545,20 +545,26 @@ def diagnosis_travel_force_figure(d) -> go.Figure:
 
 def diagnosis_cv_figure(d) -> go.Figure:
     """Out-of-sample evidence of the last round's candidates: pooled held-out RMS gain and the
-    share of informative folds improved."""
+    share of informative folds improved. A candidate not cross-validated (its in-sample gain
+    under the prescreen) is drawn apart, hatched: its bar is an in-sample gain, an upper bound,
+    not held-out evidence (one axis had shown both as "held-out")."""
     names = [c["name"] for c in d.candidates]
     fig = _Fig()
-    fig.add_trace(dict(type="bar", x=[100 * c["heldout_gain"] for c in d.candidates], y=names, orientation="h",
-                       name="held-out RMS gain (%)",
-                       marker=dict(color=[COLORS[2] if c["significant"] else ("#e0a000" if c["passes"] else "#bbbbbb")
-                                          for c in d.candidates]),
-                       text=[f"{c['folds_improved']}/{c['folds_informative']} folds" if c.get("cross_validated", True)
-                             else "in-sample: not cross-validated" for c in d.candidates],
-                       textposition="auto"))
+    for crossed, label in ((True, "held-out RMS gain (%)"), (False, "in-sample RMS gain, not cross-validated (%)")):
+        cs = [c for c in d.candidates if bool(c.get("cross_validated", True)) == crossed]
+        if not cs:
+            continue
+        fig.add_trace(dict(type="bar", x=[100 * c["heldout_gain"] for c in cs], y=[c["name"] for c in cs],
+                           orientation="h", name=label,
+                           marker=dict(color=[COLORS[2] if c["significant"] else ("#e0a000" if c["passes"] else "#bbbbbb")
+                                              for c in cs], **({} if crossed else {"pattern": dict(shape="/")})),
+                           text=[f"{c['folds_improved']}/{c['folds_informative']} folds" if crossed
+                                 else "in-sample: not cross-validated" for c in cs],
+                           textposition="auto"))
     fig.add_trace(_scatter([100 * d.settings.min_gain] * 2, [names[0], names[-1]] if names else [0, 0], mode="lines",
                            name="threshold", line=dict(color="#444444", dash="dash")))
-    return _layout(fig, "Candidates, last round: held-out gain (blocked cross-validation)", "% of the held-out RMS",
-                   "", yaxis=dict(autorange="reversed"))
+    return _layout(fig, "Candidates, last round: held-out gain (blocked cross-validation)", "% of the RMS",
+                   "", yaxis=dict(autorange="reversed", categoryorder="array", categoryarray=names), barmode="overlay")
 
 
 def diagnosis_report_figures(d) -> list:

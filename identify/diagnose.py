@@ -3156,7 +3156,7 @@ class Diagnosis:
         if len(self.effects) > 1:
             L.append("Effects as written to the file (the last step's model, every effect refitted together):")
             for e in self.written_effects():
-                L.append(f"  {e['name']:22s} " + format_values(e["name"], e["params"], self.units, e["sd"]))
+                L.append(f"  {e['name']:22s} " + format_values(e["name"], e["params"], self.units, e["sd"], e["held"]))
         L.append("Per regime (RMS before → after the refit → final, the model written; the noise floor of that "
                  "regime's samples):")
         for k, r in self.regimes.items():

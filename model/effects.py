@@ -459,18 +459,22 @@ EFFECTS: dict[str, Effect] = {e.name: e for e in (
 
 
 def format_values(name: str, values: Mapping[str, float], units: Mapping[str, str],
-                  sd: Mapping[str, float] | None = None) -> str:
+                  sd: Mapping[str, float] | None = None, held: Mapping[str, str] | None = None) -> str:
     """"h = -0.589 ± 0.04, n_c = 8.78 ± 1.2 reversals, …": an effect's values with their units,
     and the 1-σ of those that were estimated (``sd``; a value without one was held). A shape
     parameter whose amplitude the data do not tell from no effect (``Effect.undetermined``) is
-    said to be not determined instead of given a σ."""
+    said to be not determined instead of given a σ; ``held``: why a value written without a σ
+    has none, as a file's provenance.held says (a drift's b, 0.285 ± 3.1 in the model written,
+    had been listed as a plain "b = 0.2846")."""
     eff = EFFECTS.get(name)
     unit = {p.name: p.unit_in(units) for p in eff.params} if eff is not None else {}
     sd = sd or {}
     loose = eff.undetermined(values, sd) if eff is not None else {}
+    held = {k: str(v) for k, v in (held or {}).items() if k not in loose}
     return ", ".join(f"{k} = {v:.4g}" + (f" ± {sd[k]:.2g}" if k in sd and math.isfinite(sd[k]) and k not in loose else "")
                      + (f" {unit[k]}" if unit.get(k) else "")
-                     + (f" (not determined: {loose[k]})" if k in loose else "") for k, v in values.items())
+                     + (f" (not determined: {loose[k]})" if k in loose else f" ({held[k]})" if k in held else "")
+                     for k, v in values.items())
 
 
 def effect_of(name) -> Effect:

@@ -156,7 +156,7 @@ class DiagnoseTab:
             text = ("Effects, in the order named: "
                     + "; ".join(f"**{name}** ({EFFECTS[name].description})" for name in d.effects)
                     # the values written (every effect refitted together, ± 1 σ): they have no controls
-                    + ".\n\nAs written: " + "; ".join(f"**{e['name']}**: {format_values(e['name'], e['params'], units, e['sd'])}"
+                    + ".\n\nAs written: " + "; ".join(f"**{e['name']}**: {format_values(e['name'], e['params'], units, e['sd'], e['held'])}"
                                                     for e in d.written_effects())
                     + "\n\nGap after each step: "
                     + " → ".join(f"{s['rms']:.3g}" for s in d.steps)

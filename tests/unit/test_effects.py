@@ -299,6 +299,12 @@ def test_a_shape_whose_amplitude_is_within_two_sigma_of_none_is_said_not_determi
     # from none: its τ is not determined, said with the σ counted
     txt = format_values("time_drift", {"t0": 24.86, "b": -0.2496, "tau": 61.77}, {"time": "s"}, {"b": 0.14, "tau": 40.0})
     assert "tau = 61.77 s (not determined: b = -0.25 ± 0.14 is 1.8 σ from 0, within 2 σ)" in txt, txt
+    # a value written without a σ because the file holds it (provenance.held: not determined in
+    # the model written) says why, where it had read as a plain value; a σ is not shown for it
+    held = {"b": "not determined: b = 0.285 ± 3.1: its σ exceeds the whole (100%) of what it scales"}
+    txt = format_values("time_drift", {"t0": 0.722, "b": 0.2846, "tau": 20.87}, {"time": "s"}, {}, held)
+    assert txt == ("t0 = 0.722 s, b = 0.2846 (not determined: b = 0.285 ± 3.1: its σ exceeds the whole (100%) of what "
+                   "it scales), tau = 20.87 s"), txt
     # the wavelength is the period of both harmonics: undetermined only when neither shows
     weak_fundamental = {**ripple, "a": 0.001, "a2": 0.05}
     sd2 = {**sd, "a": 0.002, "phase": 3.0, "a2": 0.002, "phase2": 0.04}

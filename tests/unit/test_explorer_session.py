@@ -111,3 +111,21 @@ def test_web_messages_name_the_file_and_no_command_line_options():
     # with the clause's own bracket (a diagnosis's note on the base refitted alone)
     assert (without_cli_hints("moves (see above); `diagnose --refit-base --out` writes it (it leaves 1.5); the rest")
             == "moves (see above); the rest")
+
+
+def test_the_candidates_figure_draws_an_in_sample_gain_apart_from_held_out_ones():
+    # a candidate the prescreen did not cross-validate has its in-sample gain as its number (an
+    # upper bound): drawn hatched, in a trace that says so, not on the held-out one
+    from types import SimpleNamespace
+
+    cands = [dict(name="normal_load", heldout_gain=0.38, significant=True, passes=True, cross_validated=True,
+                  folds_improved=5, folds_informative=5),
+             dict(name="position_ripple", heldout_gain=0.004, significant=False, passes=False, cross_validated=False,
+                  folds_improved=0, folds_informative=0)]
+    fig = plots.diagnosis_cv_figure(SimpleNamespace(candidates=cands, settings=SimpleNamespace(min_gain=0.03)))
+    bars = {t.name: t for t in fig.data if t.type == "bar"}
+    assert list(bars["held-out RMS gain (%)"].y) == ["normal_load"]
+    assert list(bars["held-out RMS gain (%)"].x) == pytest.approx([38.0])
+    inside = bars["in-sample RMS gain, not cross-validated (%)"]
+    assert list(inside.y) == ["position_ripple"] and inside.marker.pattern.shape == "/"
+    assert list(fig.layout.yaxis.categoryarray) == ["normal_load", "position_ripple"]  # the candidates' order
