@@ -256,8 +256,9 @@ def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "au
             levels = Levels.joined([levels, added])
             taken.append((int(beyond.sum()), f"at a window of {w} (|v| {speeds_said(added.velocity)})"))
         left = fast_runs(narrow, levels, cut_short=False)
-    said = (f"{len(found)} steady run(s) faster than every level of their side lasted under min_run = "
-            f"{prep.th.min_run} samples (two windows of {prep.th.window}; the longest {max(n for _, n in found)})")
+    said = (f"{len(found)} steady run(s) faster than every level of their side were averaged over under min_run = "
+            f"{prep.th.min_run} samples (two windows of {prep.th.window}; a level leaves out a run's first 30 % and "
+            f"its last half window; the longest run {max(n for _, n in found)})")
     if not taken:
         return levels, said + " and no window down to 5 samples made levels of them"
     lost = (f"; {len(left)} faster run(s) (up to |v| {max(left)[0]:.3g}) are not levels even at a window of {tried}"
@@ -352,11 +353,21 @@ def friction_by_eq8(prep: Prepared) -> tuple[Prepared, str] | None:
 MAX_BRANCHES, MAX_POINTS = 10, 100
 
 
+SPAN_TIE = 1e-9  # branch spans within this fraction of the longest are tied (``_thin``)
+
+
 def _thin(branches):
     """At most MAX_BRANCHES branches per data set (the longest) and MAX_POINTS samples per
     branch (evenly spaced, the reversal kept): the likelihood stays a likelihood of the
-    samples used, and its cost stays bounded on long recordings."""
-    keep = sorted(branches, key=lambda b: -np.ptp(b.displacement))[:MAX_BRANCHES]
+    samples used, and its cost stays bounded on long recordings. The spans are compared to
+    SPAN_TIE of the longest: on an encoder's grid many branches span the same number of steps,
+    and which of them were kept had turned on the last bit of their rounding (a stage written in
+    m and in µm kept two different branches of the same recording, and its curve's first knot
+    moved 6 σ); tied, the earlier in the record is kept (``sorted`` is stable)."""
+    spans = [float(np.ptp(b.displacement)) for b in branches]
+    top = max(spans, default=0.0) or 1.0
+    order = sorted(range(len(branches)), key=lambda i: -round(spans[i] / top / SPAN_TIE))
+    keep = [branches[i] for i in order[:MAX_BRANCHES]]
     out = []
     for b in keep:
         if len(b.force) > MAX_POINTS:
