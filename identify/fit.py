@@ -31,7 +31,7 @@ from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_spee
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, beyond_levels,
                       constant_velocity_levels, crossing_range, crossings, fast_runs, force_branches,
-                      motion_branches, noise_sd, prepare, sliding_levels)
+                      motion_branches, noise_sd, prepare, presliding_reach, sliding_levels)
 from .threads import one_blas_thread
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
@@ -131,7 +131,8 @@ def left_out(levels: Levels, unit: str = "") -> str:
         parts.append(f"{levels.opposing} run(s) whose friction opposes their velocity (a presliding spring giving "
                      f"back, not sliding)")
     if levels.creep:
-        parts.append(f"{levels.creep} run(s) of creep (weak or short beside the other levels: segment.sliding_only)")
+        parts.append(f"{levels.creep} run(s) of creep (weak or short beside the other levels, or starting within twice "
+                     f"the presliding range of a reversal: segment.sliding_only, constant_velocity_levels)")
     if levels.trend_alone:
         parts.append(f"{levels.trend_alone} run(s) whose friction trends, on a side with under {TREND_BESIDE} settled "
                      f"levels and too few speeds to make a sweep of their own")
@@ -306,10 +307,9 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
         if taken is None:
             return levels, ""
         prep, of_force = taken
-    ranges = [r for c in crossings(prep) if math.isfinite(r := crossing_range(c, prep.th))]
-    if len(ranges) < MIN_RANGE_BRANCHES:
+    z_range = prep.reach or presliding_reach(prep)  # (a friction taken by eq. (8) was not there when prepared)
+    if not z_range > 0:
         return levels, ""
-    z_range = float(np.median(ranges))
     extra = sliding_levels(prep, z_range)
     taken = [s for s in sides if distinct_speeds(extra.velocity[extra.velocity * s > 0])
              > distinct_speeds(levels.velocity[levels.velocity * s > 0])]

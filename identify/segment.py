@@ -192,6 +192,9 @@ class Prepared:
     th: Thresholds
     sign_flipped: bool = False
     notes: list = field(default_factory=list)
+    # the median travel over which a measured friction crossed to sliding after a reversal of
+    # the motion (``presliding_reach``); 0 where it is not seen (no friction logged, too few crossings)
+    reach: float = 0.0
 
     @property
     def source(self) -> str:
@@ -410,8 +413,22 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
         if choice == "reaction":
             friction = -friction
             flipped = True
-    return Prepared(rec, velocity, friction, rec.force if rec.friction is None else None, noise, usable, chunks, th,
+    prep = Prepared(rec, velocity, friction, rec.force if rec.friction is None else None, noise, usable, chunks, th,
                     flipped, notes)
+    prep.reach = presliding_reach(prep)
+    return prep
+
+
+MIN_REACH_CROSSINGS = 3  # crossings of a prescribed motion that bound the presliding range (``presliding_reach``)
+
+
+def presliding_reach(prep: Prepared) -> float:
+    """The median travel over which the measured friction crossed to sliding after a reversal of
+    the motion (``crossing_range``), over at least MIN_REACH_CROSSINGS crossings; 0 where fewer
+    are seen (no friction logged, a motion without reversals): past twice it the contact
+    slides, and the transition curve no longer matters (``GROSS_SLIDING``)."""
+    ranges = [r for c in crossings(prep) if math.isfinite(r := crossing_range(c, prep.th))]
+    return float(np.median(ranges)) if len(ranges) >= MIN_REACH_CROSSINGS else 0.0
 
 
 def _batch_var_of_mean(a, batches=8):
@@ -497,12 +514,23 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     w = max(th.window, 5)
     out = ([], [], [], [], [])
     trend = ([], [], [], [], [])
-    opposing = 0
+    opposing = within_reach = 0
+    # the motion's reversals, to tell how far each run has travelled from the last one
+    turns = {a: a + turning_points(x[a:b], th.x_turn) for a, b in prep.chunks} if prep.reach > 0 else {}
     for a, s0, e0 in steady_runs(prep):
         if e0 - s0 < th.min_run:
             continue
         s, e = level_part(a, s0, e0, w, settle_fraction)
         if e - s < th.min_run:
+            continue
+        before = turns[a][turns[a] <= s] if prep.reach > 0 else ()
+        if len(before) and abs(x[s] - x[before[-1]]) < GROSS_SLIDING * prep.reach:
+            # a run that starts within twice the presliding range of its reversal is a stroke of
+            # presliding, its friction on the way to S(v), not sliding (a Dahl rig made apart:
+            # its presliding triangles' legs, 1–20 µm at 50 µm/s, read 35–44 N where S(v) gives
+            # 41.8–44.9; a tribometer's ±10–60 µm oscillations made 13 of its 26 levels, and its
+            # S(v) came out as Coulomb)
+            within_reach += 1
             continue
         vk = v[s:e]
         med = np.median(vk)
@@ -542,7 +570,7 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
     def levels(o, **kw):
         return Levels(*(np.array(a, dtype=float) for a in o[:4]), time=np.array(o[4], dtype=float), **kw)
 
-    runs = levels(out, opposing=opposing)
+    runs = levels(out, opposing=opposing, creep=within_reach)
     if not trend[0]:
         return sliding_only(runs)
     runs = sliding_only(Levels.joined([runs, levels(trend, trended=np.ones(len(trend[0]), bool))]))
