@@ -1119,6 +1119,18 @@ def test_a_chord_jacobian_is_scipys_at_its_anchor_and_a_refit_along_it_simulates
         assert rms < 1.1 * sd
 
 
+def _friction_under_a_force_name(path, name: str, n: int):
+    """A file of friction alone (no I·ẍ in it) logged under the column ``name`` [N*m]: a motion
+    reversing every 2 s at about 0.02 rad/s, friction 2 N·m·tanh(v/1e-3) and 0.01 N·m of noise."""
+    t = np.arange(n) * 1e-3
+    v = 0.02 * (1 + 0.1 * np.sin(2 * np.pi * 1.3 * t)) * np.tanh(5 * np.sin(2 * np.pi * t / 4))
+    x = np.cumsum(v) * 1e-3
+    f = 2.0 * np.tanh(v / 1e-3) + 0.01 * np.random.default_rng(3).standard_normal(len(t))
+    np.savetxt(path, np.column_stack([t, x, f]), delimiter=",", fmt=["%.4f", "%.8f", "%.5f"],
+               header=f"time [s],angle [rad],{name} [N*m]", comments="")
+    return path
+
+
 def test_the_hint_that_a_force_column_is_measured_friction_is_not_given_where_its_name_says_applied(tmp_path):
     # friction alone (no I·ẍ in it) under a force's name: the regression finds no inertia, and
     # "if it is measured friction, name it so" is the hint — not for a column named as a drive's
@@ -1126,15 +1138,9 @@ def test_the_hint_that_a_force_column_is_measured_friction_is_not_given_where_it
     from leuven_friction.identify.data import load_recording
     from leuven_friction.identify.diagnose import recording_inertia
 
-    t = np.arange(120000) * 1e-3
-    v = 0.02 * (1 + 0.1 * np.sin(2 * np.pi * 1.3 * t)) * np.tanh(5 * np.sin(2 * np.pi * t / 4))
-    x = np.cumsum(v) * 1e-3
-    f = 2.0 * np.tanh(v / 1e-3) + 0.01 * np.random.default_rng(3).standard_normal(len(t))
     whys = {}
     for name in ("torque", "drive torque"):
-        path = tmp_path / f"{name.replace(' ', '_')}.csv"
-        np.savetxt(path, np.column_stack([t, x, f]), delimiter=",", fmt=["%.4f", "%.8f", "%.5f"],
-                   header=f"time [s],angle [rad],{name} [N*m]", comments="")
+        path = _friction_under_a_force_name(tmp_path / f"{name.replace(' ', '_')}.csv", name, 120000)
         est, whys[name] = recording_inertia(load_recording(path))
         assert est is None and "gives no positive inertia" in whys[name], whys[name]
     assert "if it is measured friction, name it so" in whys["torque"]
@@ -1149,15 +1155,9 @@ def test_fit_warns_where_the_column_read_as_applied_force_carries_no_inertial_te
     from leuven_friction.identify.data import load_recording
     from leuven_friction.identify.fit import fit_recordings
 
-    t = np.arange(60000) * 1e-3
-    v = 0.02 * (1 + 0.1 * np.sin(2 * np.pi * 1.3 * t)) * np.tanh(5 * np.sin(2 * np.pi * t / 4))
-    x = np.cumsum(v) * 1e-3
-    f = 2.0 * np.tanh(v / 1e-3) + 0.01 * np.random.default_rng(3).standard_normal(len(t))
     warned = {}
     for name, cols in (("torque", None), ("drive torque", None), ("torque", {"friction": "torque [N*m]"})):
-        path = tmp_path / f"{name.replace(' ', '_')}.csv"
-        np.savetxt(path, np.column_stack([t, x, f]), delimiter=",", fmt=["%.4f", "%.8f", "%.5f"],
-                   header=f"time [s],angle [rad],{name} [N*m]", comments="")
+        path = _friction_under_a_force_name(tmp_path / f"{name.replace(' ', '_')}.csv", name, 60000)
         res = fit_recordings([load_recording(path, columns=cols)], refine=False)
         warned[(name, bool(cols))] = res.warnings
     assert warned[("torque", False)] == [

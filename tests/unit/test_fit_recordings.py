@@ -932,3 +932,27 @@ def test_the_refinement_says_each_experiments_rms_in_the_unit_of_what_it_compare
                  "--out", str(tmp_path / "s.yaml")]) == 0
     out = capsys.readouterr().out
     assert "per experiment (position in m): " in out and "rad" not in out.split("per experiment (")[1][:20], out
+
+
+def test_branches_tied_in_span_on_an_encoders_grid_are_kept_by_their_place_in_the_record():
+    # on an encoder's grid many branches span the same number of steps; which of them entered
+    # the likelihood had turned on the last bit of their rounding, and a stage written in m and
+    # in µm kept different ones (its curve's first knot 6 σ apart). Tied, the earlier ones are
+    # kept, however each span is rounded; a longer one is still kept first
+    from leuven_friction.identify.fit import MAX_BRANCHES, _thin
+    from leuven_friction.identify.mle import Branch
+
+    q = 1e-7
+    rng = np.random.default_rng(5)
+    spans = [12] * (MAX_BRANCHES + 4) + [15]  # steps: all tied but the last, the longest
+
+    def branches(ulp):
+        out = []
+        for i, k in enumerate(spans):
+            x = np.arange(k + 1) * q * (1.0 + ulp * rng.standard_normal())  # a rounding's worth off the grid
+            out.append(Branch(force=np.linspace(0.0, 1.0 + i, k + 1), displacement=x, D=10.0 + i))
+        return out
+
+    for ulp in (0.0, 2e-16, 1e-15):
+        kept = [b.D - 10.0 for b in _thin(branches(ulp))]
+        assert kept == [len(spans) - 1] + list(range(MAX_BRANCHES - 1)), (ulp, kept)
