@@ -179,16 +179,17 @@ def test_the_file_a_diagnosis_writes_starts_the_next_one_from_its_last_gap(tmp_p
 
 
 def test_the_model_written_from_a_fitted_file_holds_only_what_stayed_held(tmp_path, capsys):
-    # a fitted file holds F_s at F_c and n at 7; the diagnosis refits both (the S(v) levels, n,
-    # σ1 by output error) when it names an effect: the file it writes no longer says they are
-    # held, says where they moved, and still holds what it left (v_s, δ, σ2). --refit-base,
-    # which chooses what is written where nothing is named, says it was not used
+    # a fitted file holds F_s at F_c (its negative side: no level shows the drop) and n at 7; the
+    # diagnosis refits both (the S(v) levels, n, σ1 by output error) when it names an effect: the
+    # file it writes no longer says they are held, says where they moved, and still holds what
+    # it left (v_s, δ, σ2). --refit-base, which chooses what is written where nothing is named,
+    # says it was not used
     import yaml
 
     fitted, written = tmp_path / "fit.yaml", tmp_path / "diag.yaml"
     assert main(["fit", "sample:effect_position_periodic", "--out", str(fitted)]) == 0
     held_before = yaml.safe_load(fitted.read_text())["provenance"]["held"]
-    assert "stribeck.positive.Fs" in held_before and "n" in held_before
+    assert any(k.endswith(".Fs") for k in held_before) and "n" in held_before, held_before
     capsys.readouterr()
     assert main(["diagnose", "sample:effect_position_periodic", "--params", str(fitted), "--out", str(written),
                  "--refit-base"]) == 0
@@ -202,7 +203,16 @@ def test_the_model_written_from_a_fitted_file_holds_only_what_stayed_held(tmp_pa
     unc = yaml.safe_load(written.read_text())["uncertainty"]
     assert not [k for k in unc if k.startswith(("stribeck.", "transition_curve")) or k in ("n", "sigma1")], unc
     assert any(k.startswith("effects.") for k in unc) and "no σ is written for S(v)" in prov["diagnosis"]
-    assert {k for k in held_before if k.endswith((".vs", ".delta", ".sigma2"))} <= set(prov["held"])
+    # what the file still holds of S(v) is the fit's value, or one the diagnosis's own steady
+    # sliding held anew and says so (its S(v) is identified anew: a δ or a σ2 the fit held may
+    # be determined there, and is then among the moved)
+    def at(doc, k):
+        side, name = k.split(".")[1:]
+        return doc["stribeck"][side][name]
+
+    fit_doc, written_doc = yaml.safe_load(fitted.read_text()), yaml.safe_load(written.read_text())
+    for k in (k for k in held_before if k.startswith("stribeck.") and k in prov["held"]):
+        assert at(written_doc, k) == at(fit_doc, k) or "the diagnosis's" in prov["held"][k], (k, prov["held"][k])
 
 
 def test_diagnose_cli_bad_input_is_one_line(tmp_path, capsys):
