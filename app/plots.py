@@ -563,7 +563,7 @@ def diagnosis_cv_figure(d) -> go.Figure:
                            textposition="auto"))
     fig.add_trace(_scatter([100 * d.settings.min_gain] * 2, [names[0], names[-1]] if names else [0, 0], mode="lines",
                            name="threshold", line=dict(color="#444444", dash="dash")))
-    return _layout(fig, "Candidates, last round: held-out gain (blocked cross-validation)", "% of the RMS",
+    return _layout(fig, "Candidates, last round: RMS gain (held out; hatched: in-sample)", "% of the RMS",
                    "", yaxis=dict(autorange="reversed", categoryorder="array", categoryarray=names), barmode="overlay")
 
 

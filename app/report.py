@@ -33,7 +33,7 @@ def diagnosis_html(d, source: str) -> str:
                     "decided on, beside the free S(v)"])
     if len(d.effects) > 1:
         steps += "<h2>Effects as written to the file</h2>" + _table(
-            [[e["name"], format_values(e["name"], e["params"], units, e["sd"], e["held"])] for e in d.written_effects()],
+            [list(row) for row in d.written_said(units)],
             ["effect", "values (every effect refitted together, ± 1 σ)"])
     conf = ""
     if d.confounded:

@@ -315,7 +315,12 @@ class Recording:
             col, key, unit = currents[0]
             unit = unit or current_word(col)
             return f"column {col!r} is a current ({unit}): {_current_fix(col, unit)}"
-        return f"none of {_listing(self.ignored)} was recognised as one" if self.ignored else ""
+        if not self.ignored:
+            return ""
+        near = misspelt_column(self.ignored, signals)
+        guess = (f" ({near[0]!r} reads like {near[2]!r} misspelt: {columns_option(near[1], near[0])})"
+                 if near else "")
+        return f"none of {_listing(self.ignored)} was recognised as one{guess}"
 
     def __len__(self) -> int:
         return len(self.time)
@@ -444,6 +449,31 @@ NEGATED = "-"  # ``--columns force=-F_coil``: that column with its sign turned (
 def _empty(cell) -> bool:
     """A table cell that holds nothing (NaN as read, or blank text)."""
     return cell is None or (isinstance(cell, float) and math.isnan(cell)) or not str(cell).strip()
+
+
+def misspelt_column(columns, signals) -> tuple[str, str, str] | None:
+    """The first of ``columns`` one of whose words is a misspelling of a word that names one of
+    ``signals`` (``tua_motor`` → tau, a force), as (column, signal, word), or None: the same
+    letters in another order, or at most a letter longer or shorter and 75 % alike (difflib's
+    ratio). Words of three letters or more only, and only where the column's unit may be the
+    signal's: a short word ("f", "u") is close to too much ("status" holds "tau"), and a speed in
+    deg/s is no torque however it is spelt."""
+    import difflib
+
+    for col in columns:
+        key, unit = _split_header(col)
+        words = [w for w in split_unit_word(key)[0] if len(w) >= 3]
+        for sig in signals:
+            if unit is not None and not _fits(unit, sig):
+                continue
+            names = [n for n in WORDS.get(sig, ()) + ALIASES.get(sig, ()) if len(n) >= 3]
+            for w in words:
+                for n in names:
+                    if w == n or abs(len(w) - len(n)) > 1:
+                        continue
+                    if sorted(w) == sorted(n) or difflib.SequenceMatcher(None, w, n).ratio() >= 0.75:
+                        return col, sig, n
+    return None
 
 
 def columns_option(sig: str, col: str, negated: bool = False) -> str:

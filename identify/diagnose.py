@@ -3054,6 +3054,13 @@ class Diagnosis:
                  "held": {k: held[f"effects.{i}.params.{k}"] for k in e["params"] if f"effects.{i}.params.{k}" in held}}
                 for i, e in enumerate(self.params_after.effects)]
 
+    def written_said(self, units=None) -> list[tuple[str, str]]:
+        """(name, values in words) of each effect in the model written (``written_effects``), in
+        ``units`` (the set's by default; the explorer shows its own spelling): what the text and
+        HTML reports and the explorer list."""
+        return [(e["name"], format_values(e["name"], e["params"], units or self.units, e["sd"], e["held"]))
+                for e in self.written_effects()]
+
     def summary(self) -> dict:
         return {
             "effects": list(self.effects), "effect": self.effect, "effect_params": self.effect_params,
@@ -3155,8 +3162,8 @@ class Diagnosis:
                          + format_values(s["name"], s["params_decided"], self.units))
         if len(self.effects) > 1:
             L.append("Effects as written to the file (the last step's model, every effect refitted together):")
-            for e in self.written_effects():
-                L.append(f"  {e['name']:22s} " + format_values(e["name"], e["params"], self.units, e["sd"], e["held"]))
+            for name, said in self.written_said():
+                L.append(f"  {name:22s} " + said)
         L.append("Per regime (RMS before → after the refit → final, the model written; the noise floor of that "
                  "regime's samples):")
         for k, r in self.regimes.items():
@@ -4707,10 +4714,14 @@ class GapAsGiven:
     def said(self) -> str:
         """In words, as ``fit`` reports it."""
         u = self.unit
-        parts = [f"{k} {v:.3g}" for k, v in self.regimes.items()]
+        # each regime against the floor too: a short regime far off hides in the total (a
+        # gimbal made apart read 2.0 × the floor overall, its 345 presliding samples 19 ×)
+        parts = [f"{k} {v:.3g}" + (f" ({v / self.noise:.1f} ×)" if self.noise > 0 else "")
+                 for k, v in self.regimes.items()]
         return (f"RMS {self.total:.3g} {u}" + (f" ({self.total / self.noise:.1f} × the noise floor {self.noise:.3g} {u})"
                                               if self.noise > 0 else "")
-                + f"; per regime ({u}): {', '.join(parts)} (from {self.start:.4g} s on)")
+                + f"; per regime ({u}{', × the floor' if self.noise > 0 else ''}): {', '.join(parts)} "
+                  f"(from {self.start:.4g} s on)")
 
 
 def gap_as_given(rec: Recording, params: FrictionParams) -> GapAsGiven:

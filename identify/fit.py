@@ -29,8 +29,8 @@ from .errors import IdentificationError
 from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfit_scale,
                      misfits, stribeck_plus_viscous, widened_stderr)
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, TREND_BESIDE, Prepared, beyond_levels,
-                      constant_velocity_levels, crossing_range, crossings, fast_runs, force_branches,
+from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, MIN_REACH_CROSSINGS, TREND_BESIDE, Prepared,
+                      beyond_levels, constant_velocity_levels, crossing_range, crossings, fast_runs, force_branches,
                       motion_branches, noise_sd, prepare, presliding_reach, sliding_levels)
 from .threads import one_blas_thread
 
@@ -169,7 +169,6 @@ def sign_hint(prep: Prepared, levels: Levels) -> str:
             f"the other one)")
 
 
-MIN_RANGE_BRANCHES = 3  # reversals whose crossings bound the presliding range for ``with_sliding_levels``
 
 
 def _speeds_per_side(levels: Levels) -> tuple[int, int]:
@@ -287,8 +286,8 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     (``segment.sliding_levels``) where that shows more speeds, and what was done, in words
     ("" if nothing). Gross sliding starts past twice the presliding range, the median travel
     over which the friction crossed to sliding after a reversal, to the sliding friction at the
-    speed reached (``segment.crossing_range``; at least
-    MIN_RANGE_BRANCHES crossings). The paper's Markov estimator takes constant-velocity runs; a
+    speed reached (``segment.presliding_reach``; at least
+    MIN_REACH_CROSSINGS crossings). The paper's Markov estimator takes constant-velocity runs; a
     recording made without them (a crank-driven tribometer, a sinusoidal force) still shows
     S(v) wherever its velocity changes slowly against the friction's lag, and that is used
     instead of holding one speed's value or another machine's S(v). Without a measured friction
@@ -606,10 +605,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             datasets.append(ds)
         seen = [] if fb or mb else [(r, float(c.dx[min(MIN_BRANCH_POINTS, len(c.dx)) - 1])) for c in crossings(pr)
                                     if math.isfinite(r := crossing_range(c, pr.th))]
-        if len(seen) >= MIN_RANGE_BRANCHES:
+        if len(seen) >= MIN_REACH_CROSSINGS:
             # reversals whose crossing to sliding is over within the turn threshold, or within the
             # first samples after the turn: presliding the sensor or the sampling does not resolve
-            # (a contact that sticks, then slips)
+            # (a contact that sticks, then slips); their median range, as ``presliding_reach``
+            # takes it (``pr.reach`` is 0 where the friction was taken by eq. (8) after preparing)
             reach = float(np.median([r for r, _ in seen]))
             resolution = max(pr.th.x_turn, float(np.median([q for _, q in seen])))
             short.append((reach, resolution))
@@ -1023,10 +1023,19 @@ def force_like_friction(recordings: list[Recording], notes: list) -> list[str]:
 
     out = []
     for r in recordings:
-        if any(n.startswith(f"{r.source}: inertia ") and NAME_IT_FRICTION in n for n in notes):
-            col = r.columns.get("force", "force")
-            out.append(f"{r.source}: column {col!r} was read as the applied force, but it carries no inertial term "
-                       f"(I·ẍ, eq. (8)) — measured friction carries none: {NAME_IT_FRICTION}, and fit again")
+        said = [n for n in notes if n.startswith(f"{r.source}: inertia ") and NAME_IT_FRICTION in n]
+        if not said:
+            continue
+        col = r.columns.get("force", "force")
+        # the note's two cases: no inertial term found at all, or one read but not told from 0
+        # (a slow rig's applied torque may be that too: said as a doubt, not as a finding)
+        found = ("it carries no inertial term" if "not read: " in said[0] else
+                 "the inertial term read in it is not told from 0")
+        load = ("; or friction following the normal load hides that term (`diagnose` tells whether the load is an "
+                "effect)" if "following the normal load" in said[0] else "")
+        out.append(f"{r.source}: column {col!r} was read as the applied force, but {found} (I·ẍ, eq. (8)) — "
+                   f"measured friction carries none: {NAME_IT_FRICTION}, and fit again"
+                   f"{load}")
     return out
 
 

@@ -525,8 +525,10 @@ def constant_velocity_levels(prep: Prepared, *, settle_fraction: float = 0.3) ->
             continue
         before = turns[a][turns[a] <= s] if prep.reach > 0 else ()
         if len(before) and abs(x[s] - x[before[-1]]) < GROSS_SLIDING * prep.reach:
-            # a run that starts within twice the presliding range of its reversal is a stroke of
-            # presliding, its friction on the way to S(v), not sliding (a Dahl rig made apart:
+            # a run whose averaged part starts within twice the presliding range of its last
+            # turning point (a chunk's first sample counts as one: a log that starts mid-slide, or
+            # after a gap, may lose its first run so) is a stroke of presliding, its friction on
+            # the way to S(v), not sliding (a Dahl rig made apart:
             # its presliding triangles' legs, 1–20 µm at 50 µm/s, read 35–44 N where S(v) gives
             # 41.8–44.9; a tribometer's ±10–60 µm oscillations made 13 of its 26 levels, and its
             # S(v) came out as Coulomb)

@@ -524,8 +524,12 @@ class FrictionParams:
         """The dimensioned scalars (σ1, the inertia) this set holds at their built-in defaults
         because its file, in the paper's units, left them out (``from_dict``): the paper's robot
         joint's σ1 and a made-up 5 kg·m², not this machine's. Kept in ``provenance.defaulted``,
-        so that a set written back out still says so while the value is the default."""
-        return tuple((self.provenance or {}).get(DEFAULTED) or ())
+        so that a set written back out still says so while the value is the default. A value
+        changed since (``replace``, the explorer's controls) is the user's, not a default: the
+        mark holds only while the value is still the field's default, as ``from_dict`` reads it."""
+        defaults = {f.name: f.default for f in _scalar_fields(type(self))}
+        return tuple(k for k in (self.provenance or {}).get(DEFAULTED) or ()
+                     if k in defaults and getattr(self, k) == defaults[k])
 
     @property
     def outer_loop_span(self) -> float:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import viser
 
 from ...identify.diagnose import base_off_verdict
-from ...model.effects import EFFECTS, format_values
+from ...model.effects import EFFECTS
 from ...model.errors import FrictionError
 from .. import plots
 from .context import Context, Proposal, plot_config
@@ -156,8 +156,7 @@ class DiagnoseTab:
             text = ("Effects, in the order named: "
                     + "; ".join(f"**{name}** ({EFFECTS[name].description})" for name in d.effects)
                     # the values written (every effect refitted together, ± 1 σ): they have no controls
-                    + ".\n\nAs written: " + "; ".join(f"**{e['name']}**: {format_values(e['name'], e['params'], units, e['sd'], e['held'])}"
-                                                    for e in d.written_effects())
+                    + ".\n\nAs written: " + "; ".join(f"**{name}**: {said}" for name, said in d.written_said(units))
                     + "\n\nGap after each step: "
                     + " → ".join(f"{s['rms']:.3g}" for s in d.steps)
                     + "\n\nPer regime (RMS before → after): "

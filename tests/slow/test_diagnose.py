@@ -39,7 +39,8 @@ def test_clean_recording_names_nothing_and_keeps_the_model(tmp_path):
     # what `fit` reports of a model's friction gap is the gap the diagnosis starts from
     said = gap_by_regime(rec, base)
     assert said.startswith(f"RMS {d.rms_before:.3g} ") and f"× the noise floor {d.noise:.3g}" in said, (said, d.text())
-    assert f"presliding {d.regimes['presliding']['rms_before']:.3g}," in said
+    pre = d.regimes["presliding"]["rms_before"]
+    assert f"presliding {pre:.3g} ({pre / d.noise:.1f} ×)," in said, said
 
 
 def test_the_work_reported_counts_every_simulation_and_its_time(monkeypatch):

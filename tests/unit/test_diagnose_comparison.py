@@ -5,6 +5,8 @@ the regimes a candidate must help in."""
 
 import math
 
+import re
+
 import numpy as np
 import pytest
 from leuven_friction.identify.diagnose import (
@@ -1167,6 +1169,27 @@ def test_fit_warns_where_the_column_read_as_applied_force_carries_no_inertial_te
     assert warned[("drive torque", False)] == [] and warned[("torque", True)] == []
 
 
+def test_the_warning_says_a_doubt_as_a_doubt_and_keeps_the_loads_alternative():
+    # an inertia read but not told from 0 (a slow rig's applied torque may read so) is no
+    # finding that the column has no inertial term; a load changing along the record is the
+    # other reason the inertia note gives, and the warning keeps it
+    from types import SimpleNamespace
+
+    from leuven_friction.identify.diagnose import NAME_IT_FRICTION
+    from leuven_friction.identify.fit import force_like_friction
+
+    r = SimpleNamespace(source="rig.csv", columns={"force": "torque [N*m]"})
+    doubt = (f"rig.csv: inertia read as 0.01 ± 0.03, too uncertain to write as an estimate (σ over a quarter of "
+             f"the value; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}; or "
+             f"friction following the normal load, which spans 40 % of its largest value along the record, hides it)")
+    none = f"rig.csv: inertia not read: gives no positive inertia; a column of measured friction ... {NAME_IT_FRICTION}"
+    (w_doubt,), (w_none,) = force_like_friction([r], [doubt]), force_like_friction([r], [none])
+    assert "is not told from 0" in w_doubt and "carries no inertial term" not in w_doubt
+    assert "normal load" in w_doubt and "normal load" not in w_none
+    assert "carries no inertial term" in w_none
+    assert force_like_friction([r], ["rig.csv: inertia read as 0.0400 ± 0.001 (the force regressed …)"]) == []
+
+
 def test_a_set_with_a_load_effect_is_compared_without_it_on_a_recording_without_a_load():
     # a set a load recording's diagnosis extended, beside a recording without a load column: the
     # explorer draws it without the load effect and says so (it had shown "Could not draw")
@@ -1209,7 +1232,14 @@ def test_the_explorers_gap_is_the_noise_where_the_set_is_the_truth_and_the_log_s
                     units={"time": "s", "position": "rad", "friction": "N*m"})
     assert gap(rec, p) == pytest.approx(noise, rel=0.1)
     assert gap(rec, p) == gap_as_given(rec, p).total
-    assert gap_as_given(rec, p).said().startswith(f"RMS {gap(rec, p):.3g} N*m")
+    said = gap_as_given(rec, p).said()
+    assert said.startswith(f"RMS {gap(rec, p):.3g} N*m")
+    # each regime is set against the floor as well, which is the friction's noise here: none is
+    # above it, and the sliding ones (most of the samples) are at it
+    ratios = dict(re.findall(r"(presliding|sliding, v [<>] 0) [0-9.e-]+ \(([0-9.]+) ×\)", said))
+    assert len(ratios) == len(gap_as_given(rec, p).regimes) >= 2, said
+    assert all(float(r) < 1.25 for r in ratios.values()), said
+    assert all(0.8 < float(r) for k, r in ratios.items() if k.startswith("sliding")), said
 
 
 # ---------------------------------------------------------------- one round's choice among rivals

@@ -215,6 +215,8 @@ def test_missing_force_column_is_one_line_naming_the_file(tmp_path):
 
 @pytest.mark.parametrize("extra, says", [
     ("motor_current", r"none of motor_current was recognised as one: name it with --columns force=<column>"),
+    # a gimbal made apart logged its torque as `tua_motor [mN*m]`: the option that takes it is given
+    ("tua_motor [mN*m]", r"'tua_motor \[mN\*m\]' reads like 'tau' misspelt: --columns \"force=tua_motor \[mN\*m\]\""),
     ("tau_a [N*m],tau_b [N*m]", r"tau_a \[N\*m\], tau_b \[N\*m\] could each be force: name it with --columns"),
     # one of two may be a load pressing the contact (a pitch bearing's bending moment)
     ("tau_a [N*m],tau_b [N*m]", r"another of them, a load pressing the contact, with --columns normal_load=<column>"),
@@ -227,6 +229,19 @@ def test_a_force_column_not_taken_is_named_with_how_to_name_it(tmp_path, extra, 
     with pytest.raises(IdentificationError, match=says) as e:
         fit_recordings([load_recording(path)], refine=False)
     assert "\n" not in str(e.value)
+
+
+@pytest.mark.parametrize("column, guess", [
+    ("Torqe", ("force", "torque")), ("firction [N]", ("friction", "friction")), ("monent", ("force", "moment")),
+    # not misspellings: a short word inside a long one, a signal's own word, another kind of unit, other words
+    ("status", None), ("momentum", None), ("torque_sensor_2", None), ("omega_est [deg/s]", None),
+    ("motor_current", None), ("current [A]", None), ("voltage", None), ("pressure [bar]", None), ("Fz [N]", None),
+])
+def test_a_misspelt_force_or_friction_column_is_guessed_and_nothing_else(column, guess):
+    from leuven_friction.identify.data import misspelt_column
+
+    near = misspelt_column([column], ("force", "friction"))
+    assert (near[1:] if near else None) == guess
 
 
 @pytest.mark.parametrize("n", ["0", "nan", "-3", "inf"])

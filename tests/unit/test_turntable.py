@@ -127,6 +127,10 @@ def test_a_starting_file_without_inertia_or_sigma1_is_no_machines_inertia(tmp_pa
     assert (left_out.inertia, left_out.sigma1) == (given.inertia, given.sigma1) == (5.0, 1500.0)
     # the mark stays while the value is the built-in one, written out and read back
     assert params_from_yaml(params_to_yaml(left_out)).defaulted == ("sigma1", "inertia")
+    # a value typed in after loading (the explorer's control, ``replace``) is the user's, not a default
+    typed = left_out.replace(inertia=0.04)
+    assert typed.defaulted == ("sigma1",) and params_from_yaml(params_to_yaml(typed)).defaulted == ("sigma1",)
+    assert fit_recordings([rec], base=typed, refine=False).params.inertia == 0.04
     from_left_out = fit_recordings([rec], base=left_out, refine=False)
     assert from_left_out.params.inertia == pytest.approx(0.035, rel=0.1)
     assert "beside the model fitted here" in from_left_out.held["inertia"], from_left_out.held["inertia"]
