@@ -169,8 +169,6 @@ def sign_hint(prep: Prepared, levels: Levels) -> str:
             f"the other one)")
 
 
-
-
 def _speeds_per_side(levels: Levels) -> tuple[int, int]:
     """Distinct speeds of the constant-velocity levels, (positive, negative)."""
     v = levels.steady().velocity
