@@ -44,22 +44,28 @@ def S(v, side, g):
     return g * (p['Fc'] + (p['Fs'] - p['Fc']) * math.exp(-abs(v / p['vs']) ** p['delta']))
 
 
-def schedule():
-    """list of segments: ('torque', [(t, tau) knots]) or ('track', [(t, x) knots])."""
-    segs = []
-    t = 2.0
-    # presliding triangles, open loop, 15 mN*m/s
-    lv = [0.85, -0.85, 0.6, -0.6, 0.35, -0.35, 0.0]
-    knots = [(0.0, 0.0), (t, 0.0)]
+def triangles(t, levels):
+    """Open-loop torque ramps at 15 mN*m/s from t through levels x |Fs-|, then 1 s at 0: their
+    knots (t, tau) and the time they end."""
+    knots = []
     prev = 0.0
-    for a in lv:
+    for a in levels:
         tgt = a * SN['Fs']
         t += abs(tgt - prev) / 0.015
         knots.append((t, tgt))
         prev = tgt
     t += 1.0
     knots.append((t, 0.0))
-    segs.append(('torque', knots))
+    return knots, t
+
+
+def schedule():
+    """list of segments: ('torque', [(t, tau) knots]) or ('track', [(t, x) knots])."""
+    segs = []
+    t = 2.0
+    # presliding triangles, open loop, 15 mN*m/s
+    ramps, t = triangles(t, [0.85, -0.85, 0.6, -0.6, 0.35, -0.35, 0.0])
+    segs.append(('torque', [(0.0, 0.0), (2.0, 0.0)] + ramps))
     speeds = [0.3, 0.6, 1.2, 2.5, 5, 10, 20, 40, 80]        # deg/s
     order = speeds + speeds[::-1]
     x = 0.0
@@ -93,17 +99,8 @@ def write(out, effect="none", seed=1):
     moves = segs[1][1][1:]
     T_end = segs[1][2] + 1.0
     # presliding tail at the end as well (open-loop triangles again)
-    tail = [(T_end, 0.0)]
-    tt = T_end
-    prev = 0.0
-    for a in [0.85, -0.85, 0.5, -0.5, 0.0]:
-        tgt = a * SN['Fs']
-        tt += abs(tgt - prev) / 0.015
-        tail.append((tt, tgt))
-        prev = tgt
-    tt += 1.0
-    tail.append((tt, 0.0))
-    T_total = tt
+    ramps, T_total = triangles(T_end, [0.85, -0.85, 0.5, -0.5, 0.0])
+    tail = [(T_end, 0.0)] + ramps
     n = int(T_total / DT)
 
     # reference position profile for the tracking part (piecewise)

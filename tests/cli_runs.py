@@ -2,6 +2,8 @@
 
 import json
 
+import yaml
+
 from leuven_friction.app.cli import main
 
 
@@ -13,6 +15,16 @@ def diagnose_file(tmp_path, df, name: str, float_format: str = "%.10g") -> dict:
     out = tmp_path / "report.json"
     assert main(["diagnose", str(path), "--json", str(out)]) == 0
     return json.loads(out.read_text())
+
+
+def fit_then_diagnose(tmp_path, csv: str, name: str) -> tuple[dict, dict]:
+    """``leuven-friction fit`` on the recording at ``csv``, then ``diagnose`` with the file it
+    wrote, as a user runs them (the default settings): the parameter file and the JSON report,
+    read back."""
+    base, rep = tmp_path / f"{name}.yaml", tmp_path / f"{name}.json"
+    assert main(["fit", csv, "--out", str(base)]) == 0
+    assert main(["diagnose", csv, "--params", str(base), "--json", str(rep)]) == 0
+    return yaml.safe_load(base.read_text()), json.loads(rep.read_text())
 
 
 def written(rep: dict, name: str) -> dict:

@@ -4,24 +4,20 @@ measured in lbf, its position in inches; presliding loops of rising amplitude, t
 as a new user runs them. Every expectation is the simulator's own, not a number the tool
 printed."""
 
-import json
-
 import numpy as np
 import pytest
 import yaml
 
 from leuven_friction.app.cli import main
 from synth import dahl_rig as S
+from tests.cli_runs import fit_then_diagnose
 
 LBF = S.LBF
 
 
 def _fit_and_diagnose(tmp_path, name):  # as a user runs them: the default settings
     (csv,) = S.simulate(str(tmp_path), [name])
-    base, rep = tmp_path / f"{name}.yaml", tmp_path / f"{name}.json"
-    assert main(["fit", csv, "--out", str(base)]) == 0
-    assert main(["diagnose", csv, "--params", str(base), "--json", str(rep)]) == 0
-    return yaml.safe_load(base.read_text()), json.loads(rep.read_text())
+    return fit_then_diagnose(tmp_path, csv, name)
 
 
 @pytest.mark.slow

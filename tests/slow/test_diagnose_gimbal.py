@@ -3,25 +3,20 @@
 loop, a 19-bit encoder logged in mrad, the motor torque in mN·m, time in ms), as a new user runs
 them. Every expectation is the simulator's own, not a number the tool printed."""
 
-import json
 import math
 
 import numpy as np
 import pytest
-import yaml
 
-from leuven_friction.app.cli import main
 from synth import gimbal as G
+from tests.cli_runs import fit_then_diagnose
 
 SPEEDS = np.radians([0.3, 0.6, 1.2, 2.5, 5, 10, 20, 40, 80])  # the sweep's, rad/s
 
 
 def _fit_and_diagnose(tmp_path, name):  # as a user runs them: the default settings
     (csv,) = G.simulate(str(tmp_path), [name])
-    base, rep = tmp_path / f"{name}.yaml", tmp_path / f"{name}.json"
-    assert main(["fit", csv, "--out", str(base)]) == 0
-    assert main(["diagnose", csv, "--params", str(base), "--json", str(rep)]) == 0
-    return yaml.safe_load(base.read_text()), json.loads(rep.read_text())
+    return fit_then_diagnose(tmp_path, csv, name)
 
 
 def _steady(s, v):
