@@ -640,45 +640,70 @@ def _force_reading(rec: Recording) -> tuple[MotionReading, np.ndarray, float, np
     return m, vel, v_noise, f, averaging_length(0.0, f_sd, v_noise, m.dt, m.compared.window, len(m.t), longest)
 
 
-def recording_inertia(rec: Recording) -> tuple[InertiaEstimate | None, str]:
+class LikeFriction(NamedTuple):
+    """Why a column read as the applied force may be measured friction (``recording_inertia``):
+    the regression on the acceleration finds no inertial term in it (``doubt`` False), or reads
+    one not told from 0 (``doubt`` True: a slow rig's applied torque may read so too);
+    ``load_span``, where the normal load changes along the record by more than a tenth of its
+    largest value, that fraction: friction following the load can hide I·ẍ as well."""
+
+    doubt: bool
+    load_span: float | None = None
+
+
+class InertiaNote(NamedTuple):
+    """What ``recording_inertia`` reads: the estimate (None where there is none), the words the
+    notes give, and, where the column read as the applied force looks like measured friction,
+    why (``LikeFriction``; None where it does not, or its name says it is applied)."""
+
+    estimate: InertiaEstimate | None
+    why: str
+    like_friction: LikeFriction | None = None
+
+
+def recording_inertia(rec: Recording) -> InertiaNote:
     """The inertia of eq. (8) that a recording of applied force and position says by itself
     (``inertia_from_force`` at the shortest averaging, no inertia given), and in words why
     there is none (no applied force, a measured friction, no steady sliding to read it in, the
     two windows disagreeing)."""
     if rec.force is None or rec.position is None:
-        return None, "not read: no applied force and position to read it from"
+        return InertiaNote(None, "not read: no applied force and position to read it from")
     if rec.friction is not None:
-        return None, "not read: the friction is measured, eq. (8) is not needed"
+        return InertiaNote(None, "not read: the friction is measured, eq. (8) is not needed")
     if len(rec.time) < 50:
-        return None, f"not read: {len(rec.time)} samples, too few to regress the force on the acceleration"
+        return InertiaNote(None, f"not read: {len(rec.time)} samples, too few to regress the force on the acceleration")
     m, vel, v_noise, f, L0 = _force_reading(rec)
     reading = inertia_read(f, vel, m.t, L0, m.v_rest, v_motion=m.velocity)
     reversed_why = reversed_force(rec, reading)
     if reversed_why:
         raise DataError(reversed_why)
     est = reading.estimate
-    # (not said of a column whose name says it is applied: a drive's or a motor's torque)
-    friction_named_force = ("" if words_of(rec.columns.get("force", "")) & APPLIED_WORDS else
-                            f"; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}")
-    if rec.normal_load is not None:
+    # the hint that the column is measured friction: where the regression finds no inertial
+    # term at all (not where there is too little steady sliding to look: a sweep whose levels
+    # the fit could not find), or reads one not told from 0; never of a column whose name says
+    # it is applied (a drive's or a motor's torque)
+    doubt = est is not None and not est.usable and abs(est.value) < 2.0 * est.stderr
+    no_term = doubt or (est is None and reading.no_inertial_term)
+    load_span = None
+    if no_term and rec.normal_load is not None:
         # friction that follows a load changing along the record is a slow part of the force the
         # regression on the acceleration does not model, and can hide I·ẍ as well
         n = np.abs(np.asarray(rec.normal_load, dtype=np.float64))
         change = float(np.ptp(n) / np.max(n)) if np.max(n) > 0 else 0.0
-        if change > 0.1:
-            friction_named_force += (f"; or friction following the normal load, which spans {100 * change:.0f} % of its "
-                                     f"largest value along the record, hides it (`diagnose` tells whether the load is "
-                                     f"an effect)")
+        load_span = change if change > 0.1 else None
+    like = (LikeFriction(doubt, load_span) if no_term and not words_of(rec.columns.get("force", "")) & APPLIED_WORDS
+            else None)
+    hint = f"; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}" if like else ""
+    if load_span is not None:
+        hint += (f"; or friction following the normal load, which spans {100 * load_span:.0f} % of its largest value "
+                 f"along the record, hides it (`diagnose` tells whether the load is an effect)")
     if est is None:
-        # the hint only where the regression finds no inertial term at all, not where there is
-        # too little steady sliding to look (a sweep whose levels the fit could not find)
-        return None, f"not read: {reading.why}" + (friction_named_force if reading.no_inertial_term else "")
+        return InertiaNote(None, f"not read: {reading.why}" + hint, like)
     if not est.usable:
-        return est, (f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to write as an estimate (σ over a "
-                     f"quarter of the value"
-                     + (friction_named_force if abs(est.value) < 2.0 * est.stderr else "") + ")")
-    return est, (f"read as {est.value:.4g} ± {est.stderr:.2g} (the force regressed on the mean acceleration over "
-                 f"{8 * L0 + 1} and {32 * L0 + 1} samples)")
+        return InertiaNote(est, f"read as {est.value:.3g} ± {est.stderr:.2g}, too uncertain to write as an estimate "
+                                f"(σ over a quarter of the value{hint})", like)
+    return InertiaNote(est, f"read as {est.value:.4g} ± {est.stderr:.2g} (the force regressed on the mean acceleration "
+                            f"over {8 * L0 + 1} and {32 * L0 + 1} samples)")
 
 
 def inertia_ceiling(rec: Recording) -> float | None:

@@ -338,7 +338,7 @@ def friction_by_eq8(prep: Prepared) -> tuple[Prepared, str] | None:
 
     if prep.force is None:
         return None
-    est, _ = recording_inertia(prep.rec)
+    est = recording_inertia(prep.rec).estimate
     if est is None or not est.usable:
         return None
     acc = mean_acceleration(prep.velocity, prep.rec.time, max(prep.th.window, 5) | 1)
@@ -783,7 +783,11 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     from .refine import STUCK_DAMPING_RATIO, sigma1_at_damping_ratio, sigma1_at_data_scale
 
     reading_sigma1 = None if given["sigma1"] else sigma1_at_data_scale(p.stribeck, levels)
-    p, inertia_sd = _with_inertia(p, recordings, given["inertia"], held, notes, kept_from["inertia"], reading_sigma1)
+    from .diagnose import recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
+
+    inertia_notes = [recording_inertia(r) for r in recordings]
+    p, inertia_sd = _with_inertia(p, recordings, inertia_notes, given["inertia"], held, notes, kept_from["inertia"],
+                                  reading_sigma1)
     if not given["sigma1"] and not any(pr.friction is not None for pr in preps):
         # friction taken from an applied force alone (eq. (8)): the refinement below does not
         # estimate σ1 (force ramps do not determine it) but simulates with it, and so does the
@@ -828,7 +832,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     # the refinement starts from this fit's σ (a parameter it cannot move keeps them)
     res = FitResult(p.replace(uncertainty=unc), stribeck_fit, tfit, levels, n_br, notes, datasets,
                     {pr.source: pr.th for pr in preps}, held, decisions, branches_tried=tried,
-                    warnings=force_like_friction(recordings, notes))
+                    warnings=force_like_friction(recordings, inertia_notes))
     if refine:
         try:
             from .refine import refine_fit
@@ -1010,38 +1014,38 @@ def dropped_knots(z: np.ndarray, drop: list, refit, notes: list, why: str):
     return z, refit(z)
 
 
-def force_like_friction(recordings: list[Recording], notes: list) -> list[str]:
-    """One line per recording whose column read as the applied force carried no inertial term
-    (I·ẍ of eq. (8)), as measured friction does (``diagnose.recording_inertia`` says so in its
-    inertia note, unless the column's name says it is applied): the whole fit took it as applied,
-    which a note alone had not made plain (a rig's torque sensor, named `torque`, read so: its
-    transition curve not resolved, the paper's held, and a 20 % drift lost in the noise floor
-    that curve made)."""
+def force_like_friction(recordings: list[Recording], inertia_notes: list) -> list[str]:
+    """One line per recording whose column read as the applied force looks like measured
+    friction (``diagnose.recording_inertia``'s ``like_friction``, one ``InertiaNote`` per
+    recording in ``inertia_notes``): no inertial term (I·ẍ of eq. (8)) in it, as measured
+    friction has none, unless the column's name says it is applied. The whole fit took it as
+    applied, which a note alone had not made plain (a rig's torque sensor, named `torque`, read
+    so: its transition curve not resolved, the paper's held, and a 20 % drift lost in the noise
+    floor that curve made)."""
     from .diagnose import NAME_IT_FRICTION
 
     out = []
-    for r in recordings:
-        said = [n for n in notes if n.startswith(f"{r.source}: inertia ") and NAME_IT_FRICTION in n]
-        if not said:
+    for r, said in zip(recordings, inertia_notes):
+        like = said.like_friction
+        if like is None:
             continue
         col = r.columns.get("force", "force")
-        # the note's two cases: no inertial term found at all, or one read but not told from 0
-        # (a slow rig's applied torque may be that too: said as a doubt, not as a finding)
-        found = ("it carries no inertial term" if "not read: " in said[0] else
-                 "the inertial term read in it is not told from 0")
+        # no inertial term found at all, or one read but not told from 0 (a slow rig's applied
+        # torque may be that too: said as a doubt, not as a finding)
+        found = "the inertial term read in it is not told from 0" if like.doubt else "it carries no inertial term"
         load = ("; or friction following the normal load hides that term (`diagnose` tells whether the load is an "
-                "effect)" if "following the normal load" in said[0] else "")
+                "effect)" if like.load_span is not None else "")
         out.append(f"{r.source}: column {col!r} was read as the applied force, but {found} (I·ẍ, eq. (8)) — "
-                   f"measured friction carries none: {NAME_IT_FRICTION}, and fit again"
-                   f"{load}")
+                   f"measured friction carries none: {NAME_IT_FRICTION}, and fit again{load}")
     return out
 
 
-def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: bool, held: dict, notes: list,
-                  start: str, reading_sigma1: float | None = None) -> tuple[FrictionParams, float | None]:
+def _with_inertia(p: FrictionParams, recordings: list[Recording], inertia_notes: list, from_file: bool, held: dict,
+                  notes: list, start: str, reading_sigma1: float | None = None) -> tuple[FrictionParams, float | None]:
     """Eq. (8)'s inertia I, read from the recordings that log an applied force
     (``diagnose.recording_inertia``: the force regressed on the mean acceleration beside a free
-    steady curve while sliding steadily, no model entering). Written with its σ where it is
+    steady curve while sliding steadily, no model entering; ``inertia_notes``, one per
+    recording, are its readings). Written with its σ where it is
     usable (σ under a quarter of the value; several recordings pooled by inverse variance) and
     no parameter file was given: the built-in default is another machine's. A file's inertia
     is kept (a value from the drawings is usually better than a regression on a log), and the
@@ -1049,11 +1053,10 @@ def _with_inertia(p: FrictionParams, recordings: list[Recording], from_file: boo
     at the data's own reading where there is one (``_held_inertia``: ``reading_sigma1`` is the
     σ1 of the model read beside), else at the built-in default; named as held either way."""
 
-    from .diagnose import inertia_ceiling, recording_inertia  # the diagnosis owns eq. (8)'s reading of a record
+    from .diagnose import inertia_ceiling
 
     reads, loose = [], []  # usable readings; readings too uncertain to write as an estimate
-    for r in recordings:
-        est, why = recording_inertia(r)
+    for r, (est, why, _) in zip(recordings, inertia_notes):
         if r.force is not None and r.friction is None:
             notes.append(f"{r.source}: inertia {why}")  # "inertia read as …" / "inertia not read: …"
         if est is not None:

@@ -1143,7 +1143,7 @@ def test_the_hint_that_a_force_column_is_measured_friction_is_not_given_where_it
     whys = {}
     for name in ("torque", "drive torque"):
         path = _friction_under_a_force_name(tmp_path / f"{name.replace(' ', '_')}.csv", name, 120000)
-        est, whys[name] = recording_inertia(load_recording(path))
+        est, whys[name], _ = recording_inertia(load_recording(path))
         assert est is None and "gives no positive inertia" in whys[name], whys[name]
     assert "if it is measured friction, name it so" in whys["torque"]
     assert "measured friction" not in whys["drive torque"], whys["drive torque"]
@@ -1172,22 +1172,46 @@ def test_fit_warns_where_the_column_read_as_applied_force_carries_no_inertial_te
 def test_the_warning_says_a_doubt_as_a_doubt_and_keeps_the_loads_alternative():
     # an inertia read but not told from 0 (a slow rig's applied torque may read so) is no
     # finding that the column has no inertial term; a load changing along the record is the
-    # other reason the inertia note gives, and the warning keeps it
+    # other reason the inertia reading gives, and the warning keeps it. The warning is built
+    # from the reading itself, not from its sentence in the notes
     from types import SimpleNamespace
 
-    from leuven_friction.identify.diagnose import NAME_IT_FRICTION
+    from leuven_friction.identify.diagnose import InertiaEstimate, InertiaNote, LikeFriction
     from leuven_friction.identify.fit import force_like_friction
 
     r = SimpleNamespace(source="rig.csv", columns={"force": "torque [N*m]"})
-    doubt = (f"rig.csv: inertia read as 0.01 ± 0.03, too uncertain to write as an estimate (σ over a quarter of "
-             f"the value; a column of measured friction read as the applied force shows none: {NAME_IT_FRICTION}; or "
-             f"friction following the normal load, which spans 40 % of its largest value along the record, hides it)")
-    none = f"rig.csv: inertia not read: gives no positive inertia; a column of measured friction ... {NAME_IT_FRICTION}"
+    doubt = InertiaNote(InertiaEstimate(0.01, 0.03), "read as …", LikeFriction(doubt=True, load_span=0.4))
+    none = InertiaNote(None, "not read: …", LikeFriction(doubt=False))
     (w_doubt,), (w_none,) = force_like_friction([r], [doubt]), force_like_friction([r], [none])
     assert "is not told from 0" in w_doubt and "carries no inertial term" not in w_doubt
     assert "normal load" in w_doubt and "normal load" not in w_none
     assert "carries no inertial term" in w_none
-    assert force_like_friction([r], ["rig.csv: inertia read as 0.0400 ± 0.001 (the force regressed …)"]) == []
+    assert force_like_friction([r], [InertiaNote(InertiaEstimate(0.04, 0.001), "read as 0.0400 ± 0.001")]) == []
+
+
+def test_a_load_changing_along_a_force_with_no_inertial_term_is_read_into_the_reading(tmp_path):
+    # measured friction under a force's name, beside a normal load logged as ramped by half
+    # along the record: the reading says the column looks like friction and carries the load's
+    # span (0.5 of its largest value), and the fit's one warning line keeps the load's
+    # alternative (friction following a load the regression does not model can hide I·ẍ too)
+    import pandas as pd
+
+    from leuven_friction.identify.data import load_recording
+    from leuven_friction.identify.diagnose import recording_inertia
+    from leuven_friction.identify.fit import force_like_friction
+
+    path = _friction_under_a_force_name(tmp_path / "torque.csv", "torque", 60000)
+    df = pd.read_csv(path)
+    load = np.linspace(100.0, 200.0, len(df))  # N: spans half its largest value
+    df["normal_load [N]"] = load
+    df.to_csv(path, index=False)
+    rec = load_recording(path)
+    note = recording_inertia(rec)
+    assert note.like_friction is not None and note.like_friction.load_span is not None, note
+    assert abs(note.like_friction.load_span - 0.5) < 1e-3, note.like_friction
+    assert "spans 50 %" in note.why, note.why
+    (w,) = force_like_friction([rec], [note])
+    assert "following the normal load" in w and "'torque [N*m]'" in w, w
 
 
 def test_a_set_with_a_load_effect_is_compared_without_it_on_a_recording_without_a_load():
@@ -1545,5 +1569,5 @@ def test_a_velocity_column_of_the_other_sign_does_not_turn_a_correct_force_round
     f = 5.0 * a + 20.0 * np.tanh(v / 1e-3) + rng.normal(0, 0.05, len(t))
     rec = Recording(time=t, position=x, force=f, velocity=-v, columns={"force": "F [N]", "velocity": "v [m/s]"},
                     units={"time": "s", "position": "m", "force": "N", "velocity": "m/s"}, source="turned_v.csv")
-    est, why = recording_inertia(rec)
+    est, why, _ = recording_inertia(rec)
     assert est is not None and abs(est.value - 5.0) < 3 * est.stderr + 0.5, (est, why)
