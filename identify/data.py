@@ -585,12 +585,13 @@ def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
 def _read_table(path: Path, text: str) -> pd.DataFrame:
     """Guess the separator from the header (the first line that is not a ``#`` comment):
     tab, semicolon (European CSV: then a comma is the decimal mark), comma, or whitespace."""
-    from .io import csv_options, sniff  # the one guess and the one reading, shared with the reader of files
+    from .io import TAIL_BYTES, csv_options, last_cell_cut, sniff  # shared with the reader of files
 
     sep, decimal = sniff(text.splitlines())
     try:
         df = pd.read_csv(io.StringIO(text), **csv_options(sep, decimal))
         df.attrs["decimal"] = decimal
+        df.attrs["last_cell_cut"] = last_cell_cut(text[-TAIL_BYTES:], sep, decimal)
         return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__
@@ -789,6 +790,14 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
             # last cell may be cut as well, so the whole line goes
             notes.append(f"the last row (line {row_of(len(df) - 1)}) has no {', '.join(map(repr, cut))}, as a file cut "
                          f"short while it was written ends: left out")
+            df = _rows_kept(df, np.arange(len(df) - 1))
+        elif df.attrs.get("last_cell_cut") and (last_col := df.attrs.get("columns_in_file", list(df.columns))[-1]) in read_cols:
+            # the file ends inside its last cell, no line end after it and that cell shorter than
+            # on every line before: a log cut short while it was written, whose last number lost
+            # its last digits (``io.last_cell_cut``): that number is not the one logged
+            notes.append(f"the last row (line {row_of(len(df) - 1)}) ends inside its {last_col!r} cell, shorter than "
+                         f"on the lines before and with no line end, as a file cut short while it was written ends: "
+                         f"left out")
             df = _rows_kept(df, np.arange(len(df) - 1))
     rec = Recording(time=np.empty(0), source=str(path))
     unitless = []  # signals whose header gives no unit: SI assumed (``_assume_si``)

@@ -211,6 +211,46 @@ def file_line_of_row(path: Path, index: int) -> int | None:
         return line_of_row(f, index)
 
 
+TAIL_BYTES = 1 << 13  # bytes of a file's end ``last_cell_cut`` reads
+
+
+def last_cell_cut(tail: str, sep: str, decimal: str) -> bool:
+    """Whether a delimited table's text ending in ``tail`` was cut inside its last cell: no
+    line end after it (a file written to the end closes its last line; a logger stopped or a
+    copy interrupted mid-write does not), and that cell shorter after its decimal mark (or,
+    without one, in all) than the same cell of every one of the up to ``SNIFF_ROWS`` lines
+    before it with as many fields. Only the last cell can be cut: the cells before it on the
+    line were written whole. A format whose digits vary from line to line leaves the minimum
+    over those lines low, so a cell written whole is rarely taken for cut (and one row left
+    out costs a fit nothing)."""
+    if not tail or tail.endswith(("\n", "\r")):
+        return False
+    lines = [ln for ln in tail.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    if len(lines) < 3:
+        return False
+
+    def fields(line: str) -> list[str]:
+        return line.split() if sep == r"\s+" else [c.strip() for c in line.split(sep)]
+
+    def size(cell: str) -> int:
+        return len(cell.split(decimal, 1)[1]) if decimal in cell else len(cell)
+
+    last = fields(lines[-1])
+    before = [f for f in map(fields, lines[-SNIFF_ROWS - 1:-1]) if len(f) == len(last)]
+    # (the tail's first line may itself be cut at the block's start: it is among ``before`` only
+    # where it has all its fields, and a short cell there lowers the minimum, which errs on keeping)
+    return len(before) >= 2 and size(last[-1]) < min(size(f[-1]) for f in before)
+
+
+def file_tail(path: Path, encoding: str) -> str:
+    """The last ``TAIL_BYTES`` of a text file, decoded (a character cut at the block's start
+    is replaced)."""
+    with open(path, "rb") as fh:
+        fh.seek(0, 2)
+        fh.seek(max(fh.tell() - TAIL_BYTES, 0))
+        return fh.read().decode(encoding, errors="replace")
+
+
 def csv_options(sep: str, decimal: str) -> dict:
     """``pandas.read_csv``'s options for a table ``sniff`` read as ``sep``, ``decimal``: the
     reader of files and of text alike. low_memory off: a column is typed once, over the whole
@@ -256,6 +296,7 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
                 raise DataError(f"{path}: line {bad[0]} has {bad[1]} fields, the header {bad[2]}")
         df.attrs["encoding"] = encoding
         df.attrs["decimal"] = decimal  # a column holding a word is read as text: its numbers keep their commas
+        df.attrs["last_cell_cut"] = last_cell_cut(file_tail(path, encoding), sep, decimal)
         return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__

@@ -98,6 +98,27 @@ def test_a_last_line_cut_short_is_left_out_and_said_and_an_empty_cell_before_it_
     assert "row 50" in str(e.value) and "empty" in str(e.value)
 
 
+def test_a_file_cut_inside_its_last_cell_loses_that_row_and_says_so(tmp_path):
+    # a logger stopped mid-write: '0.098000,0.0013,29.70' where it writes '%.6f' — the last cell
+    # lost its digits, and no line end follows. Read as written it was a sample 0.006 N off; now
+    # the row is left out and the notes say why, from a file and from an upload's text alike.
+    # The same file written whole with no line end at its close keeps every row.
+    t, x, f = _signals(50)
+    whole = "time [s],position [m],force [N]\n" + "\n".join(f"{a:.6f},{b:.6f},{c:.6f}" for a, b, c in zip(t, x, f))
+    cut = whole[:-4]
+    assert whole.endswith(f"{f[-1]:.6f}") and not cut.endswith(f"{f[-1]:.6f}")
+    path = tmp_path / "cut.csv"
+    path.write_text(cut)
+    for rec in (load_recording(path), load_recording(cut, name="cut.csv")):
+        assert len(rec.time) == 49 and rec.time[-1] == pytest.approx(t[-2], abs=1e-9)
+        assert any("last row (line 51)" in n and "'force [N]' cell" in n and "cut short" in n for n in rec.notes), \
+            rec.notes
+    (tmp_path / "whole.csv").write_text(whole)
+    for rec in (load_recording(tmp_path / "whole.csv"), load_recording(whole, name="whole.csv")):
+        assert len(rec.time) == 50 and rec.force[-1] == pytest.approx(f[-1], abs=1e-6)
+        assert not any("cut short" in n for n in rec.notes), rec.notes
+
+
 @pytest.mark.parametrize("units,field", [
     ({"position": "mm", "force": "N", "time": "s"}, "units.position"),
     ({"position": "in", "force": "lbf", "time": "s"}, "units.position"),
