@@ -146,6 +146,8 @@ COUNTS = ("count", "counts", "cts", "ct", "inc", "incs", "increments", "pulses",
 
 
 CURRENTS = ("a", "ma", "amp", "amps", "ampere", "amperes")  # a motor current, which is no force until scaled
+# the words of a motor current's name: with a force's or a torque's unit (its constant per A) it is the applied force
+CURRENT_NAMES = ("current", "curr", "strom", "motorstrom", "iq", "amps")
 MASSES = ("kg", "g", "lb", "lbm", "t")  # a mass, which is no force until weighed (a payload logged as such)
 
 
@@ -184,7 +186,7 @@ def _current_fix(column: str, unit: str) -> str:
     rotary, linear = ("0.12 mN*m", "35 mN") if milli else ("0.12 N*m", "35 N")
     return (f"a motor current is no force: the torque is the motor's torque constant times it; write that constant "
             f"per {'mA' if milli else 'A'} as its unit, e.g. '{name} [{rotary}]' for 0.12 N·m/A (a linear motor: "
-            f"'{name} [{linear}]' for 35 N/A), or give it as --units \"force={rotary}\"")
+            f"'{name} [{linear}]' for 35 N/A), or give it as {columns_option('force', column)} --units \"force={rotary}\"")
 
 
 def _counts_fix(name: str) -> str:
@@ -268,6 +270,12 @@ def recognise(key: str, unit: str | None = None) -> list:
             continue
         # a last word that is no unit of this signal ("tau_m") is part of the name
         out.append((sig, word_unit if _fits(word_unit, sig) else None))
+    if not out and unit is not None and any(w in CURRENT_NAMES for w in words) and _fits(unit, "force") \
+            and not _reads_as_not_measured(base, "force"):
+        # a motor's current whose bracket gives its torque constant per A as the unit, as the
+        # README asks (``motor_current [0.11 N*m]``), is the applied torque: its unit says so
+        # (a wrist joint made apart, logged so as told, still had to be named with --columns)
+        out.append(("force", None))
     return out
 
 
@@ -770,6 +778,13 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                    if unit is not None and unit_of(unit, "position") is None and unit_of(unit, "force") is None
                    and not is_current_unit(unit) and not is_mass_unit(unit)
                    for sig, _ in recognise(key.lower())[:1] if sig in missing]
+        # a motor current in A or mA where a force is wanted: the fix is its constant as its unit
+        # (said by ``Recording.unrecognised`` to a command that reads the file first; the same here)
+        currents = [(c, unit) for c in in_file for unit in [header_unit(c) or current_word(c)] if is_current_unit(unit)]
+        if currents and "force" in missing and not could:
+            (col, unit), = currents[:1]
+            raise DataError(f"{path}: no column for {', '.join(missing)}: column {col!r} is a current ({unit}): "
+                            f"{_current_fix(col, unit)}")
         if len(unknown) == 1 and not could:
             (col, unit, sig), = unknown
             raise DataError(f"{path}: no column for {', '.join(missing)}: column {col!r} reads as {sig} by its name, "

@@ -34,7 +34,7 @@ def web_message(e: Exception, name: str) -> str:
     """A loader's message for a web user: names the file, points at the column dropdowns
     instead of the command line's ``--columns``."""
     msg = str(e)
-    msg = re.sub(r",? or give it as --units \"[^\"]*\"", "", msg)  # (a current's constant: the header says it)
+    msg = re.sub(r",? or give it as (--columns (\"[^\"]*\"|\S+) )?--units \"[^\"]*\"", "", msg)  # (a current's constant: the header says it)
     msg = re.sub(r";?\s*name (it|them) with --columns[^)]*", "; choose it under Columns in the Data tab", msg)
     msg = msg.replace("--columns", "the column dropdowns")
     return msg if name in msg else f"{name}: {msg}"

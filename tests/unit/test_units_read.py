@@ -496,6 +496,27 @@ def test_a_torque_constant_with_a_decimal_comma_reads_as_with_a_point(tmp_path):
     assert np.allclose(rec.force, 5.9 * f)
 
 
+def test_a_motor_current_with_its_torque_constant_as_its_unit_is_read_as_the_applied_torque(tmp_path):
+    # logged as the README asks (the constant per A as the unit: 0.11 N·m/A × a gear of 100),
+    # the column is the applied torque by its unit, with no --columns; a current in A is still
+    # refused as a force with the fix, and a current's reference is no measurement
+    t, x, i = _signals()
+    p = tmp_path / "wrist.csv"
+    p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [11 N*m]"], [t, x, i]))
+    rec = load_recording(p, require=("time", "position", "force"))
+    assert rec.columns["force"] == "motor_current [11 N*m]" and rec.units["force"] == "N*m"
+    assert np.allclose(rec.force, 11.0 * i)
+    rows = (";".join(repr(float(c)).replace(".", ",") for c in row) for row in zip(t, x, i))
+    p.write_text("\n".join(["Zeit [s];Winkel [rad];Motorstrom [5,9 N*m]", *rows]) + "\n")  # a European logger's
+    assert np.allclose(load_recording(p, require=("time", "position", "force")).force, 5.9 * i)
+    p.write_text(_csv(["time [s]", "angle [rad]", "motor_current [A]"], [t, x, i]))
+    with pytest.raises(DataError, match=r"'motor_current \[A\]' is a current \(A\)"):
+        load_recording(p, require=("time", "position", "force"))
+    p.write_text(_csv(["time [s]", "angle [rad]", "motor_current_ref [11 N*m]"], [t, x, i]))
+    with pytest.raises(DataError, match="no column for force"):
+        load_recording(p, require=("time", "position", "force"))
+
+
 def test_a_position_without_a_unit_moving_faster_than_machines_do_is_said_to_need_its_unit(tmp_path):
     # a stage's position logged in µm (0.1 µm steps, a sine of 20 mm and 2 s: 63 mm/s at most)
     # without a unit: read as metres, as the header says nothing, it moves at 6·10⁴ m/s, and the
