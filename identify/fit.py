@@ -224,6 +224,34 @@ def widened_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
                   f"that changes); set --threshold rel_tol to choose")
 
 
+def wavering_levels(prep: Prepared, levels: Levels) -> str:
+    """Where ``widened_levels`` keeps the derived rel_tol (each direction shows enough
+    speeds), the speeds a wider tolerance (REL_TOL_WIDER) would add, in words ("" if
+    none): runs held at a commanded speed whose velocity wavers beyond rel_tol break into
+    pieces shorter than min_run and are lost unsaid otherwise — a harmonic-drive wrist made
+    apart, its friction rippling by 12 % along the travel under a PID loop, kept 14 of its 20
+    speeds, the six between 0.06 and 0.22 rad/s (the ripple at 2–7 Hz) gone with no word. The
+    wider tolerance said is the one of REL_TOL_WIDER that adds the most runs. Said, not taken:
+    runs at the margin of any tolerance made the suite's fits worse (see ``widened_levels``);
+    the user chooses with --threshold rel_tol."""
+    steady = levels.steady().velocity
+    have = np.log(np.abs(steady))
+    best, tol = [], None
+    for wider_tol in (t for t in REL_TOL_WIDER if t > prep.th.rel_tol):
+        wider = constant_velocity_levels(dataclasses.replace(prep, th=dataclasses.replace(prep.th, rel_tol=wider_tol)))
+        # a speed within 10 % of a level of its side is that level again (``markov.distinct_speeds``)
+        new = [v for v in wider.steady().velocity
+               if not np.any((np.sign(steady) == np.sign(v)) & (np.abs(have - math.log(abs(v))) < math.log(1.1)))]
+        if len(new) > len(best):
+            best, tol = new, wider_tol
+    if not best:
+        return ""
+    return (f"{len(best)} more run(s) hold a speed at rel_tol {tol:g} that at {prep.th.rel_tol:g} are no level (|v| "
+            f"{speeds_said(best)}): their velocity wavers beyond {prep.th.rel_tol:g} within the run (a controller "
+            f"holding a speed against a friction that changes along the travel or in time), so each breaks into "
+            f"pieces under min_run; --threshold rel_tol={tol:g} takes them")
+
+
 def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "auto",
                         thresholds: dict | None = None) -> tuple[Levels, str]:
     """A recording's levels with its fastest speeds added where a sweep held them for less
@@ -535,6 +563,8 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
             lv, widened = widened_levels(pr, lv)
             if widened:
                 notes.append(f"{pr.source}: {widened}")
+            elif wavering := wavering_levels(pr, lv):
+                notes.append(f"{pr.source}: {wavering}")
         if "window" not in (thresholds or {}) and "min_run" not in (thresholds or {}):
             lv, fastest = with_fastest_levels(pr, lv, friction_sign, thresholds)
             if fastest:
