@@ -862,7 +862,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     # the refinement starts from this fit's σ (a parameter it cannot move keeps them)
     res = FitResult(p.replace(uncertainty=unc), stribeck_fit, tfit, levels, n_br, notes, datasets,
                     {pr.source: pr.th for pr in preps}, held, decisions, branches_tried=tried,
-                    warnings=force_like_friction(recordings, inertia_notes))
+                    warnings=force_like_friction(recordings, inertia_notes) + over_loads(preps))
     if refine:
         try:
             from .refine import refine_fit
@@ -1067,6 +1067,24 @@ def force_like_friction(recordings: list[Recording], inertia_notes: list) -> lis
                 "effect)" if like.load_span is not None else "")
         out.append(f"{r.source}: column {col!r} was read as the applied force, but {found} (I·ẍ, eq. (8)) — "
                    f"measured friction carries none: {NAME_IT_FRICTION}, and fit again{load}")
+    return out
+
+
+def over_loads(preps: list[Prepared]) -> list[str]:
+    """One line per recording whose normal load was not held at one plateau, so that every
+    sample entered and S(v) and the transition curve average over its loads
+    (``segment.prepare``'s ``load_range``): the parameters are no load's own, which the S(v)
+    table does not show (a guide made apart, its load ramped 1.0–3.5 kN with friction ∝ N^0.7,
+    read F_c⁺ 9.29 N for 18 at 2 kN, σ2⁺ 365 N·s/m for 60, exit 0 and a note among many)."""
+    out = []
+    for pr in preps:
+        if pr.load_range is not None:
+            lo, hi = pr.load_range
+            unit = pr.rec.units.get("normal_load", "N")
+            out.append(f"{pr.source}: the normal load ranges {lo:.4g}–{hi:.4g} {unit}, held at no one plateau: S(v) and "
+                       f"the transition curve are averaged over the loads, no load's own — a diagnosis with these "
+                       f"parameters fits friction following the load (normal_load) where it does, and writes S(v) at "
+                       f"one load")
     return out
 
 

@@ -195,6 +195,9 @@ class Prepared:
     # the median travel over which a measured friction crossed to sliding after a reversal of
     # the motion (``presliding_reach``); 0 where it is not seen (no friction logged, too few crossings)
     reach: float = 0.0
+    # the normal load's (lowest, highest) where it is not held at one plateau and every sample
+    # is used (S(v) and the transition curve then average over the loads); None otherwise
+    load_range: tuple[float, float] | None = None
 
     @property
     def source(self) -> str:
@@ -381,6 +384,7 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
         N0 = float(np.quantile(N, 0.95))
         th.load_tol = max(5.0 * white_noise_sd(rec.normal_load), 0.02 * abs(N0))
     th.override(overrides)
+    load_range = None
     if rec.normal_load is not None:
         lu = rec.units.get("normal_load", "N")  # N, or N*m for a tilting moment
         usable = np.abs(N - N0) <= th.load_tol
@@ -397,6 +401,7 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
                          f"S(v) and the transition curve average over the loads (run diagnose to see whether "
                          f"friction follows the load)")
             usable = np.ones(n, dtype=bool)
+            load_range = (float(np.min(rec.normal_load)), float(np.max(rec.normal_load)))
     flipped = False
     friction = rec.friction
     if friction is not None:
@@ -414,7 +419,7 @@ def prepare(rec: Recording, *, friction_sign: str = "auto", overrides: dict | No
             friction = -friction
             flipped = True
     prep = Prepared(rec, velocity, friction, rec.force if rec.friction is None else None, noise, usable, chunks, th,
-                    flipped, notes)
+                    flipped, notes, load_range=load_range)
     prep.reach = presliding_reach(prep)
     return prep
 

@@ -133,7 +133,8 @@ def test_tribometer_reaction_sign_and_normal_load_are_recognised():
     assert truth.sign == "reaction"
     notes = " ".join(res.notes)
     assert "reaction" in notes and "flipped" in notes
-    assert "normal load" in notes
+    assert "normal load: plateau" in notes
+    assert not any("normal load ranges" in w for w in res.warnings), res.warnings  # held at its plateau
     assert res.params.stribeck.positive.Fc > 0 and res.params.stribeck.negative.Fc < 0
     assert any(d.branches[0].driven == "motion" for d in res.datasets)
 
@@ -332,8 +333,13 @@ def test_a_load_varying_through_the_session_is_fitted_over_all_loads(kind):
     res = fit_recordings([to_recording(df, name=f"{kind}.csv")], refine=False)
     notes = " ".join(res.notes)
     assert "every sample is used" in notes
+    # and one warning line, where it is read: the parameters are no load's own, over the
+    # load's range as logged
+    load = df["normal_load [N]"].to_numpy()
+    (warned,) = [w for w in res.warnings if "normal load ranges" in w]
+    assert f"{load.min():.4g}–{load.max():.4g} N" in warned and "no load's own" in warned, warned
     a, N_ref = case.params["normal_load"]["alpha"], case.params["normal_load"]["N_ref"]
-    scale = (df["normal_load [N]"].to_numpy() / N_ref) ** a
+    scale = (load / N_ref) ** a
     for side in ("positive", "negative"):
         Fc_true = abs(truth.stribeck[side]["Fc"])
         Fc_fit = abs(getattr(res.params.stribeck, side).Fc)
