@@ -3168,6 +3168,8 @@ class Diagnosis:
                  f"the decision compares)" + ("" if self.effects else "; nothing named: the model written is the "
                                                "one given, the alternative a step of the comparison only"))
         nz = self.noise if self.noise > 0 else float("nan")
+        # the two columns' heads, over their numbers (a user read them as unlabelled)
+        L.append(f"  {'':{STEP_LABEL_WIDTH}s} {'model written':24s}beside a free steady curve")
         for s in self.steps:
             label = s["label"]
             if len(label) > STEP_LABEL_WIDTH:  # (the alternative's, with its factors) on a line of its own
@@ -4237,7 +4239,12 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                              if max(final_reid.gap_new, final_reid.gap_file) <= final_reid.noise else
                              "worse: the file's kept" if final_reid.gap_new >= final_reid.gap_file else
                              f"not clearly better (under {STEADY_MIN_GAIN:.0%} less, or the file's within "
-                             f"{STEADY_MISFIT:g} noise sds): the file's kept"))
+                             f"{STEADY_MISFIT:g} noise sds): the file's kept")
+                          # "kept" is the shape the refit of the model written starts from, not the
+                          # values it writes: that refit moves the levels (the next note; a guide made
+                          # apart read "the file's kept" and then found σ2 60.0 written as 56.9)
+                          + ("" if reidentified else " as the start of the model written, whose refit (below) moves "
+                             "its levels"))
     # σ1's refit bound is on it before the level g is baked in: the value said and written is g × that
     at_level = f" before the level ×{final.g:.4g}" if abs(final.g - 1.0) > 5e-4 else ""
     if params.model == "leuven":
