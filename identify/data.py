@@ -593,12 +593,15 @@ def numbers_of(raw: pd.Series, decimal: str = ".") -> np.ndarray:
 def _read_table(path: Path, text: str) -> pd.DataFrame:
     """Guess the separator from the header (the first line that is not a ``#`` comment):
     tab, semicolon (European CSV: then a comma is the decimal mark), comma, or whitespace."""
-    from .io import TAIL_BYTES, csv_options, last_cell_cut, sniff  # shared with the reader of files
+    from .io import TAIL_BYTES, csv_options, last_cell_cut, preamble_lines, sniff  # shared with the reader of files
 
-    sep, decimal = sniff(text.splitlines())
+    lines = text.splitlines()
+    skip = preamble_lines(lines[:1000])
+    sep, decimal = sniff(lines[skip:])
     try:
-        df = pd.read_csv(io.StringIO(text), **csv_options(sep, decimal))
+        df = pd.read_csv(io.StringIO(text), **csv_options(sep, decimal, skip))
         df.attrs["decimal"] = decimal
+        df.attrs["preamble"] = skip
         df.attrs["last_cell_cut"] = last_cell_cut(text[-TAIL_BYTES:], sep, decimal)
         return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
@@ -662,9 +665,9 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
         index = int(rows[index])
         line = None
         if text is not None:
-            line = line_of_row(text.splitlines(), index)
+            line = line_of_row(text.splitlines(), index, df.attrs.get("preamble", 0))
         elif table_format(path) not in ("parquet", "mat"):
-            line = file_line_of_row(path, index)
+            line = file_line_of_row(path, index, df.attrs.get("preamble", 0))
         return line if line is not None else index + 2
 
     in_file = [str(c) for c in df.attrs.get("columns_in_file", df.columns)]
@@ -726,6 +729,9 @@ def load_recording(source, *, columns: dict | None = None, units: dict | None = 
                     headers[col] = (key, _as_spelled(col, unit_word))
                 break
     notes = []
+    if skip := df.attrs.get("preamble", 0):
+        notes.append(f"line(s) 1–{skip} before the header (line {skip + 1}) read as the file's own notes (an "
+                     f"instrument's export opens so), not as the table: skipped")
     if blank:
         notes.append(f"{blank} row(s) with every cell empty: skipped")
     if row_units:

@@ -74,6 +74,50 @@ def sniff(lines: Iterable[str]) -> tuple[str, str]:
     return sep, decimal
 
 
+def _names_columns(fields: list[str]) -> bool:
+    """Whether a row's fields read as a header: one of them at least is no number (in either
+    decimal mark) and not empty; a data row's "2.5e-05" has a letter too."""
+    def number(f: str) -> bool:
+        try:
+            float(f.strip().replace(",", "."))
+            return True
+        except ValueError:
+            return False
+
+    return any(f.strip() and not number(f) for f in fields)
+
+
+PREAMBLE_TAIL = 20  # rows at the end of a sniffed block that set a table's number of fields (``preamble_lines``)
+
+
+def preamble_lines(lines: list[str]) -> int:
+    """How many lines at the start of a delimited table precede its header: an instrument's
+    export opens with notes of its own ("Instrument: …", "Load: 10 N", a blank line) before the
+    names of its columns, none of them ``#`` comments (a tribometer's export made apart was
+    refused with "line 2 has 4 fields, the header 2", its first note read as the header).
+    The table's shape is the number of tab, semicolon or comma separators shared by at least
+    80 % of the last PREAMBLE_TAIL rows of the block (the last line, which may be cut, left
+    to the caller); the header is the first row with that many, where every row before it has
+    another number and the PREAMBLE_TAIL rows after it all have it. 0 where the first row is
+    the header, or no separator gives such a shape (the reader then goes on as before)."""
+    rows = [(i, ln) for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip().startswith("#")]
+    if len(rows) < 4:
+        return 0
+    tail = [ln for _, ln in rows[-PREAMBLE_TAIL:]]
+    for sep in ("\t", ";", ","):
+        counts = [ln.count(sep) for _, ln in rows]
+        m = max(set(c for c in (ln.count(sep) for ln in tail)), key=[ln.count(sep) for ln in tail].count)
+        if m == 0 or sum(ln.count(sep) == m for ln in tail) < 0.8 * len(tail):
+            continue
+        k = next((j for j, c in enumerate(counts) if c == m), None)
+        if k is None or k == 0:
+            return 0  # the first row has the table's shape: it is the header (or this separator is not the table's)
+        if all(c == m for c in counts[k + 1:k + 1 + PREAMBLE_TAIL]) and _names_columns(rows[k][1].split(sep)):
+            return rows[k][0]
+        return 0
+    return 0
+
+
 WORKBOOKS = ((b"PK\x03\x04", "a zip archive (an Excel .xlsx or OpenDocument .ods workbook is one)"),
              (b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1", "an Excel 97–2003 .xls workbook"))
 
@@ -128,14 +172,14 @@ def _head_text(path: Path) -> tuple[str, str]:
 RAGGED_BLOCK = 1 << 23  # bytes ``ragged_line`` counts at once (its memory: a few times this)
 
 
-def ragged_line(path: Path, sep: str) -> tuple[int, int, int] | None:
+def ragged_line(path: Path, sep: str, preamble: int = 0) -> tuple[int, int, int] | None:
     """(line number, fields, fields of the header) of the first line of a delimited table with
     more fields than its header, or None. Reading only some columns, pandas drops such a
     line's extra field silently (and with one more field on every line it would take the first
     column for an index); fewer fields leave a gap, which the reader of each used column
     reports. Counted on the bytes, block by block (a separator is one byte in UTF-8 and
     Windows-1252 alike); a file with quotes, or with a comment after values, is not checked, as
-    those may hold the separator."""
+    those may hold the separator. The first ``preamble`` lines (``preamble_lines``) are no rows."""
     if sep == r"\s+":
         return None
     header, before = None, 0
@@ -171,6 +215,7 @@ def ragged_line(path: Path, sep: str) -> tuple[int, int, int] | None:
             # counts as one field and cannot outnumber a header)
             row = (first != ord("#")) & ~((nxt - starts <= 2) & ((first == ord("\r")) | (first == ord("\n"))))
             idx = np.flatnonzero(row)
+            idx = idx[before + idx >= preamble]
             if header is None:
                 # the header: the first row with more than whitespace on it
                 for i in idx:
@@ -186,13 +231,16 @@ def ragged_line(path: Path, sep: str) -> tuple[int, int, int] | None:
                 return None
 
 
-def line_of_row(lines: Iterable[str], index: int) -> int | None:
+def line_of_row(lines: Iterable[str], index: int, preamble: int = 0) -> int | None:
     """The line of a text table (1-based, as an editor or a spreadsheet numbers it) that holds
-    its data row ``index`` (0-based) as the reader takes them: blank lines and ``#`` comment
-    lines are skipped, and the first other line is the header. None past the last row."""
+    its data row ``index`` (0-based) as the reader takes them: the ``preamble`` lines
+    (``preamble_lines``), blank lines and ``#`` comment lines are skipped, and the first other
+    line is the header. None past the last row."""
     header = False
     row = -1
     for number, line in enumerate(lines, 1):
+        if number <= preamble:
+            continue
         text = line.strip().lstrip("\ufeff")
         if not text or text.startswith("#"):
             continue
@@ -205,10 +253,10 @@ def line_of_row(lines: Iterable[str], index: int) -> int | None:
     return None
 
 
-def file_line_of_row(path: Path, index: int) -> int | None:
+def file_line_of_row(path: Path, index: int, preamble: int = 0) -> int | None:
     """``line_of_row`` of a CSV/TSV file, read line by line (only where a message needs it)."""
     with open(path, encoding="utf-8", errors="replace", newline=None) as f:
-        return line_of_row(f, index)
+        return line_of_row(f, index, preamble)
 
 
 TAIL_BYTES = 1 << 13  # bytes of a file's end ``last_cell_cut`` reads
@@ -251,14 +299,14 @@ def file_tail(path: Path, encoding: str) -> str:
         return fh.read().decode(encoding, errors="replace")
 
 
-def csv_options(sep: str, decimal: str) -> dict:
+def csv_options(sep: str, decimal: str, preamble: int = 0) -> dict:
     """``pandas.read_csv``'s options for a table ``sniff`` read as ``sep``, ``decimal``: the
     reader of files and of text alike. low_memory off: a column is typed once, over the whole
     file (chunk by chunk, a word in one chunk made pandas warn of mixed types on the console,
     before the one-line error that names it); the python engine of whitespace has no such option."""
     c = sep != r"\s+"
     return dict(sep=sep, engine="c" if c else "python", comment="#", skip_blank_lines=True, decimal=decimal,
-                **({"low_memory": False} if c else {}))
+                skiprows=range(preamble), **({"low_memory": False} if c else {}))
 
 
 def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
@@ -270,8 +318,9 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
     lines = text.splitlines()
     if len(text) == SNIFF_BYTES and len(lines) > 1:
         lines = lines[:-1]  # the last line of the block may be cut
-    sep, decimal = sniff(lines)
-    opts = csv_options(sep, decimal)
+    skip = preamble_lines(lines)
+    sep, decimal = sniff(lines[skip:])
+    opts = csv_options(sep, decimal, skip)
 
     def read(enc):
         if usecols is None:
@@ -291,12 +340,13 @@ def read_csv_file(path: Path, usecols: Callable[[str], bool] | None = None):
             encoding = LEGACY_ENCODING
             df = read(encoding)
         if usecols is not None:
-            bad = ragged_line(path, sep)
+            bad = ragged_line(path, sep, skip)
             if bad is not None:
                 raise DataError(f"{path}: line {bad[0]} has {bad[1]} fields, the header {bad[2]}")
         df.attrs["encoding"] = encoding
         df.attrs["decimal"] = decimal  # a column holding a word is read as text: its numbers keep their commas
         df.attrs["last_cell_cut"] = last_cell_cut(file_tail(path, encoding), sep, decimal)
+        df.attrs["preamble"] = skip
         return df
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         msg = str(e).splitlines()[0] if str(e) else type(e).__name__

@@ -432,6 +432,42 @@ def test_a_bad_cell_is_named_by_the_line_an_editor_shows(tmp_path, as_upload):
         load("back.csv", back)
 
 
+@pytest.mark.parametrize("as_upload", [False, True])
+def test_an_instruments_notes_above_the_header_are_skipped_and_lines_still_named_as_an_editor_shows(tmp_path,
+                                                                                                 as_upload):
+    # a tribometer's export: notes of its own above the names of its columns, not # comments (a
+    # comma in the first, none in the others), a blank line, then the table in semicolons and
+    # decimal commas. It was refused: "line 2 has 4 fields, the header 2"
+    head = ("Instrument: UMT TriboLab, reciprocating module (S/N 41-0273)\nOperator: K. Vermeulen\nLoad: 10 N\n"
+            "Sample rate: 1000 Hz\n\nTime [s];Stroke position [mm];Ff [N];Fn [N]\n")
+    rows = [f"{1e-3 * i:.3f};{0.5 * np.sin(0.05 * i):.5f};{0.12 * np.cos(0.05 * i):.4f};10,0".replace(".", ",")
+            for i in range(300)]
+
+    def load(name, body, lead=head):
+        text = lead + "\n".join(body) + "\n"
+        if as_upload:
+            return load_recording(text.encode(), name=name)
+        f = tmp_path / name
+        f.write_text(text)
+        return load_recording(f)
+
+    rec = load("export.csv", rows)
+    plain = load("plain.csv", rows, lead="Time [s];Stroke position [mm];Ff [N];Fn [N]\n")
+    assert np.array_equal(rec.time, plain.time) and np.array_equal(rec.friction, plain.friction)
+    assert len(rec.time) == 300 and rec.position[10] == pytest.approx(0.5e-3 * np.sin(0.5), abs=1e-8)  # mm
+    assert any("line(s) 1–5 before the header (line 6)" in n for n in rec.notes), rec.notes
+    assert not any("before the header" in n for n in plain.notes), plain.notes
+    # a word in the 41st row: line 47, the notes and the blank line counted as an editor counts them
+    word = rows[:40] + [rows[40].rsplit(";", 1)[0] + ";ERR"] + rows[41:]
+    with pytest.raises(DataError, match=r"column 'Fn \[N\]' row 47: 'ERR' is not a finite number$"):
+        load("word.csv", word)
+    # a line with a field more than the header, named by its line (a file's reader counts them,
+    # an upload's is pandas' own words)
+    extra = rows[:60] + [rows[60] + ";7"] + rows[61:]
+    with pytest.raises(DataError, match=r"line 67 has 5 fields, the header 4|Expected 4 fields in line 67, saw 5"):
+        load("extra.csv", extra)
+
+
 def _axis_file(tmp_path):
     # a feed axis as its logger writes it: the reference position beside the measured one
     rng = np.random.default_rng(3)
