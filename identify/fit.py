@@ -31,7 +31,7 @@ from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_spee
 from .mle import Gaussian, PreslidingData, fit_transition_curve
 from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, MIN_REACH_CROSSINGS, TREND_BESIDE, Prepared,
                       beyond_levels, constant_velocity_levels, crossing_range, crossings, fast_runs, force_branches,
-                      motion_branches, noise_sd, prepare, presliding_reach, sliding_levels)
+                      motion_branches, noise_sd, prepare, presliding_reach, runs_under_window, sliding_levels)
 from .threads import one_blas_thread
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
@@ -265,6 +265,9 @@ def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "au
     steady run is left: only those levels are added, so the others, and the presliding, keep the
     derived window's lower velocity noise."""
     found = fast_runs(prep, levels)
+    # runs held for less than the window itself show no steady run there at all: seen at a
+    # shorter one (``segment.runs_under_window``)
+    under = not found and bool(found := runs_under_window(prep, levels))
     if not found:
         return levels, ""
     taken, w, tried, left = [], prep.th.window, prep.th.window, found
@@ -281,8 +284,11 @@ def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "au
             added = more.kept(beyond, opposing=0, creep=0, trend_alone=0)
             levels = Levels.joined([levels, added])
             taken.append((int(beyond.sum()), f"at a window of {w} (|v| {speeds_said(added.velocity)})"))
-        left = fast_runs(narrow, levels, cut_short=False)
-    said = (f"{len(found)} steady run(s) faster than every level of their side were averaged over under min_run = "
+        left = fast_runs(narrow, levels, cut_short=False) or runs_under_window(narrow, levels)
+    said = (f"{len(found)} run(s) faster than every level of their side held their speed for {min(n for _, n in found)}"
+            f"–{max(n for _, n in found)} samples, too short to be steady at the window of {prep.th.window} the "
+            f"velocity is smoothed over (seen at a quarter of it)" if under else
+            f"{len(found)} steady run(s) faster than every level of their side were averaged over under min_run = "
             f"{prep.th.min_run} samples (two windows of {prep.th.window}; a level leaves out a run's first 30 % and "
             f"its last half window; the longest run {max(n for _, n in found)})")
     if not taken:

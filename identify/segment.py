@@ -487,6 +487,38 @@ def fast_runs(prep: Prepared, levels: Levels, *, cut_short: bool = True) -> list
     return found
 
 
+def runs_under_window(prep: Prepared, levels: Levels) -> list[tuple[float, int]]:
+    """(|v|, samples) of each run holding a speed faster than every level of its side
+    (``beyond_levels``) for less time than the window the velocity is smoothed over, so that no
+    steady run shows it there (``fast_runs`` then finds nothing): the velocity is taken again at a
+    quarter of that window (odd, at least 5) and its steady runs (as ``steady_runs`` tests them,
+    the slope noise of the short window in place of v_noise) of at least MIN_RUN_FLOOR samples
+    and two short windows are counted. A tribometer made apart, 189,000 rows at 1 kHz (a window
+    of 189), drove triangles at 3–20 mm/s whose legs lasted 0.1–0.5 s: every one was lost, S(v)
+    rested on two speeds per side (F_s held at F_c), and nothing said so."""
+    th = prep.th
+    w = max(th.window, 5)
+    short = max(5, (w // 4) | 1)
+    if short >= w or prep.rec.position is None:
+        return []
+    v = piecewise_slope(prep.rec.time, prep.rec.position, short, th.gap)
+    noise = float(_slope_noise(th.x_noise, short, 1.0 / th.rate))
+    steady = (np.abs(v) > th.v_floor) & prep.usable
+    same = np.zeros(len(v), dtype=bool)
+    same[short:] = np.abs(v[short:] - v[:-short]) <= th.rel_tol * np.abs(v[short:]) + 3 * noise
+    same[:-short] &= same[short:]
+    steady &= same & (np.sign(v) == np.sign(np.roll(v, short)))
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], steady.astype(np.int8), [0]])))
+    found = []
+    for s0, e0 in zip(edges[::2], edges[1::2]):
+        if e0 - s0 < max(MIN_RUN_FLOOR, 2 * short):
+            continue
+        speed = float(np.median(v[s0:e0]))
+        if beyond_levels([speed], levels)[0]:
+            found.append((abs(speed), int(e0 - s0)))
+    return found
+
+
 def beyond_levels(speeds, levels: Levels) -> np.ndarray:
     """Whether each speed is faster than every level of its side (its sign) by
     FASTER_THAN_LEVELS: a sweep's speed the levels so far do not reach."""

@@ -904,6 +904,53 @@ def test_a_sweeps_brief_fastest_speeds_are_taken_at_shorter_windows():
     assert sum(int(k) for k in re.findall(r"(\d+) at a window of", said)) == added, said
 
 
+def test_a_strokes_legs_shorter_than_the_window_itself_are_levels_said_with_their_windows():
+    # a tribometer's two slow speeds held 6 s each way, then 2 mm strokes at 5, 10 and 20 mm/s
+    # whose legs last 400, 200 and 100 samples, 150,000 rows at 1 kHz (a window of 151): no leg
+    # is a steady run at that window, so the fastest-levels rule saw nothing and S(v) rested on
+    # two speeds a side. Seen at a quarter of the window, every leg is a level at a window its
+    # speed allows, and S(v) is the curve the friction was drawn from
+    from leuven_friction.identify.fit import fit_recordings, with_fastest_levels
+    from leuven_friction.identify.segment import constant_velocity_levels, fast_runs, prepare, runs_under_window
+
+    rng = np.random.default_rng(4)
+    segs = [(s * V, 6000) for V in (1e-3, 2e-3) for s in (1, -1)]
+    segs += [((1 if k % 2 == 0 else -1) * V, int(round(2.0 / V))) for V in (5e-3, 1e-2, 2e-2) for k in range(12)]
+    v = np.concatenate([np.r_[np.full(n, vv), np.zeros(300)] for vv, n in segs])
+    v = np.convolve(np.r_[v, np.zeros(150_000 - len(v))], np.ones(20) / 20, mode="same")  # the drive's ramps
+    x = np.round(np.cumsum(v) * 1e-3 / 1e-7) * 1e-7  # a 0.1 µm scale
+    truth = dict(Fc=1.2, Fs=1.6, vs=3e-3, delta=2.0, sigma2=2.0)
+
+    def S(u):
+        return np.sign(u) * (truth["Fc"] + (truth["Fs"] - truth["Fc"]) * np.exp(-(np.abs(u) / truth["vs"]) ** 2)) \
+            + truth["sigma2"] * u
+
+    f = np.where(np.abs(v) > 1e-6, S(v), 0.0) + 0.005 * rng.standard_normal(len(v))
+    df = pd.DataFrame({"time [s]": np.arange(len(v)) * 1e-3, "position [m]": x, "friction [N]": f})
+    rec = _rec(df, "legs.csv")
+    prep = prepare(rec)
+    assert prep.th.window > 100  # the precondition: the window is longer than the fastest legs
+    lv = constant_velocity_levels(prep)
+    assert np.max(np.abs(lv.velocity)) < 3e-3 and fast_runs(prep, lv) == []
+    # at a quarter of the window (37 samples): the legs of 5 and 10 mm/s, 12 each; those of
+    # 20 mm/s (100 samples) only at the narrower windows the search goes on to
+    assert len(runs_under_window(prep, lv)) == 24
+    after, said = with_fastest_levels(prep, lv)
+    for V in (5e-3, 1e-2, 2e-2):
+        for sign in (1, -1):
+            assert np.sum(np.abs(after.velocity / (sign * V) - 1) < 0.05) >= 3, (V, sign, said)
+    assert said.startswith("24 run(s) faster than every level of their side held their speed for ") and \
+        "too short to be steady at the window of" in said and "--threshold window" in said, said
+    # the fit from them: each side's S(v) at the generator's values, within 4 σ and 1 %
+    res = fit_recordings([rec], refine=False)
+    for side, sign in (("positive", 1), ("negative", -1)):
+        got, sd = getattr(res.params.stribeck, side), res.params.uncertainty
+        for k in ("Fs", "Fc", "vs", "sigma2"):
+            assert f"stribeck.{side}.{k}" not in res.held, res.held
+            value, want = getattr(got, k), sign * truth[k] if k != "sigma2" else truth[k]
+            assert abs(value - want) < max(4 * sd[f"stribeck.{side}.{k}"], 0.01 * abs(want)), (side, k, value, sd)
+
+
 def test_speeds_are_said_once_each_with_their_count():
     from leuven_friction.identify.fit import speeds_said
 
