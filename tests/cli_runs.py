@@ -27,6 +27,13 @@ def fit_then_diagnose(tmp_path, csv: str, name: str) -> tuple[dict, dict]:
     return yaml.safe_load(base.read_text()), json.loads(rep.read_text())
 
 
+def simulated_fit_then_diagnose(tmp_path, simulate, name: str) -> tuple[dict, dict]:
+    """Session ``name`` of a simulator made apart (``simulate(out_dir, [name])`` writes it and
+    gives its path), then ``fit_then_diagnose`` on it: the default settings, as a user runs them."""
+    (csv,) = simulate(str(tmp_path), [name])
+    return fit_then_diagnose(tmp_path, csv, name)
+
+
 def written(rep: dict, name: str) -> dict:
     """The effect ``name`` as a diagnosis's JSON report says the file has it (values and σ)."""
     return next(e for e in rep["written_effects"] if e["name"] == name)

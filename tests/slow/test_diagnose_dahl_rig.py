@@ -10,14 +10,13 @@ import yaml
 
 from leuven_friction.app.cli import main
 from synth import dahl_rig as S
-from tests.cli_runs import fit_then_diagnose
+from tests.cli_runs import simulated_fit_then_diagnose
 
 LBF = S.LBF
 
 
 def _fit_and_diagnose(tmp_path, name):  # as a user runs them: the default settings
-    (csv,) = S.simulate(str(tmp_path), [name])
-    return fit_then_diagnose(tmp_path, csv, name)
+    return simulated_fit_then_diagnose(tmp_path, S.simulate, name)
 
 
 @pytest.mark.slow

@@ -9,14 +9,13 @@ import numpy as np
 import pytest
 
 from synth import gimbal as G
-from tests.cli_runs import fit_then_diagnose
+from tests.cli_runs import simulated_fit_then_diagnose
 
 SPEEDS = np.radians([0.3, 0.6, 1.2, 2.5, 5, 10, 20, 40, 80])  # the sweep's, rad/s
 
 
 def _fit_and_diagnose(tmp_path, name):  # as a user runs them: the default settings
-    (csv,) = G.simulate(str(tmp_path), [name])
-    return fit_then_diagnose(tmp_path, csv, name)
+    return simulated_fit_then_diagnose(tmp_path, G.simulate, name)
 
 
 def _steady(s, v):

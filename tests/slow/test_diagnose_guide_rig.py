@@ -7,12 +7,11 @@ simulator's own, not a number the tool printed."""
 import pytest
 
 from synth import guide_rig as G
-from tests.cli_runs import fit_then_diagnose, written
+from tests.cli_runs import simulated_fit_then_diagnose, written
 
 
 def _fit_and_diagnose(tmp_path, name):  # as a user runs them: the default settings
-    (csv,) = G.simulate_to(str(tmp_path), [name])
-    return fit_then_diagnose(tmp_path, csv, name)
+    return simulated_fit_then_diagnose(tmp_path, G.simulate_to, name)
 
 
 @pytest.mark.slow

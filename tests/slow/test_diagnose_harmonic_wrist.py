@@ -8,12 +8,11 @@ import numpy as np
 import pytest
 
 from synth import harmonic_wrist as H
-from tests.cli_runs import fit_then_diagnose, written
+from tests.cli_runs import simulated_fit_then_diagnose, written
 
 
 def _fit_and_diagnose(tmp_path, name):  # as a user runs them: the default settings
-    (csv,) = H.simulate_to(str(tmp_path), [name])
-    return fit_then_diagnose(tmp_path, csv, name)
+    return simulated_fit_then_diagnose(tmp_path, H.simulate_to, name)
 
 
 @pytest.mark.slow

@@ -10,13 +10,12 @@ import json
 import pytest
 
 from synth import tribometer_export as T
-from tests.cli_runs import fit_then_diagnose
+from tests.cli_runs import simulated_fit_then_diagnose
 
 
 def _fit_and_diagnose(tmp_path, name):  # as a user runs them: the default settings
-    (csv,) = T.simulate_to(str(tmp_path), [name])
-    truth = json.loads((tmp_path / f"{name}_truth.json").read_text())
-    return (*fit_then_diagnose(tmp_path, csv, name), truth)
+    doc, rep = simulated_fit_then_diagnose(tmp_path, T.simulate_to, name)
+    return doc, rep, json.loads((tmp_path / f"{name}_truth.json").read_text())
 
 
 @pytest.mark.slow

@@ -404,6 +404,15 @@ def test_a_unit_taken_from_a_name_is_said_as_the_header_spells_it(tmp_path):
     np.testing.assert_allclose(rec.friction, 3e-3 * np.arange(40.0), rtol=1e-12)
 
 
+def _loaded(tmp_path, name: str, text: str, as_upload: bool):
+    """``text`` loaded as an upload's bytes, or from a file written with it."""
+    if as_upload:
+        return load_recording(text.encode(), name=name)
+    f = tmp_path / name
+    f.write_text(text)
+    return load_recording(f)
+
+
 @pytest.mark.parametrize("as_upload", [False, True])
 def test_a_bad_cell_is_named_by_the_line_an_editor_shows(tmp_path, as_upload):
     # a European logger's export: two # lines above the header, semicolons, decimal commas
@@ -411,12 +420,7 @@ def test_a_bad_cell_is_named_by_the_line_an_editor_shows(tmp_path, as_upload):
     rows = [f"{i},5;{0.01 * i:.3f};0,{300 + i:04d}".replace(".", ",") for i in range(200)]
 
     def load(name, body):
-        text = head + "\n".join(body) + "\n"
-        if as_upload:
-            return load_recording(text.encode(), name=name)
-        f = tmp_path / name
-        f.write_text(text)
-        return load_recording(f)
+        return _loaded(tmp_path, name, head + "\n".join(body) + "\n", as_upload)
 
     rec = load("ok.csv", rows)
     assert rec.force[3] == pytest.approx(30.3) and rec.time[1] == pytest.approx(1.5e-3)  # kN, ms
@@ -444,12 +448,7 @@ def test_an_instruments_notes_above_the_header_are_skipped_and_lines_still_named
             for i in range(300)]
 
     def load(name, body, lead=head):
-        text = lead + "\n".join(body) + "\n"
-        if as_upload:
-            return load_recording(text.encode(), name=name)
-        f = tmp_path / name
-        f.write_text(text)
-        return load_recording(f)
+        return _loaded(tmp_path, name, lead + "\n".join(body) + "\n", as_upload)
 
     rec = load("export.csv", rows)
     plain = load("plain.csv", rows, lead="Time [s];Stroke position [mm];Ff [N];Fn [N]\n")
