@@ -287,10 +287,9 @@ def slope_start(v: np.ndarray, F: np.ndarray) -> float:
     """σ2 to start the Stribeck fit from too: the slope of F over the fastest 30 % of the distinct
     speeds (at least two), each speed's levels averaged (within 10 %, as ``distinct_speeds``
     counts them), 0 where the side shows fewer than two or the slope is negative. Over the
-    levels themselves, a
-    tribometer whose fastest 30 % were six visits of one speed, 0.02 m/s a few parts in 10⁴
-    apart, took a slope of its noise, and every start of one side ran off (F_s 1.8·10⁵ N,
-    χ² 4.5·10⁶ where the generator's values leave 21)."""
+    levels themselves, a tribometer whose fastest 30 % were six visits of one speed, 0.02 m/s a
+    few parts in 10⁴ apart, took a slope of its noise, and every start of one side ran off
+    (F_s 1.8·10⁵ N, χ² 4.5·10⁶ where the generator's values leave 21)."""
     a = np.abs(v)
     order = np.argsort(a)
     a, v, F = a[order], v[order], F[order]
