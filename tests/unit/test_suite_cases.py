@@ -2,7 +2,7 @@
 
 import pytest
 
-from bench.diagnosis import suite_cases
+from bench.diagnosis import main, suite_cases
 
 
 def test_one_kind_keeps_its_share_of_the_suite():
@@ -19,3 +19,19 @@ def test_one_kind_keeps_its_share_of_the_suite():
 def test_an_unknown_kind_is_named():
     with pytest.raises(ValueError, match="unknown kind 'robot'.*robot_joint"):
         suite_cases(kinds=["robot"])
+
+
+@pytest.mark.parametrize("argv, said", [
+    (["--start"], "--start: expected one argument"),
+    (["--suite", "--start", "ten"], "--start: invalid int value: 'ten'"),
+    (["--suite", "--kinds", "robot"], "unknown kind 'robot'"),
+    # a suite's option without --suite would otherwise run the two-recording benchmark instead
+    (["--kinds", "tribometer"], "--kinds is an option of the suite: add --suite"),
+    (["--bogus"], "unrecognized arguments: --bogus"),
+])
+def test_a_mistyped_command_line_is_one_line_of_usage_error_and_runs_nothing(argv, said, capsys):
+    with pytest.raises(SystemExit) as e:
+        main(argv)
+    assert e.value.code == 2
+    err = capsys.readouterr().err
+    assert said in err and "Traceback" not in err
