@@ -283,6 +283,29 @@ def test_inertia_from_force_recovers_the_mass_of_a_controlled_plant():
     assert abs(I_hat - expected) < 3 * se + 0.01 * I and se < 0.05 * I
 
 
+def test_inertia_reads_the_velocity_twice_and_its_sigma_holds_the_move():
+    # the same plant; the "wider" velocity is the logged one scaled by 1/2, so its mean
+    # acceleration is the regressor halved: least squares on a column scaled by c reads the
+    # slope divided by c (the free steady curve's columns, built from the first velocity, stay),
+    # so the second reading is exactly 2·I, a rise, and σ is the jackknife's and that rise in
+    # quadrature
+    from leuven_friction.identify.diagnose import inertia_read
+    from tests.unit.plants import velocity_loop
+
+    t, _, v, f = velocity_loop(0.8, lambda v: 2.0 * np.tanh(v / 1e-3) + 5.0 * v,
+                               [0.05, -0.05, 0.2, -0.2, 0.6, -0.6] * 2, 1500, kp=40.0)
+    once = inertia_read(f, v, t, 5, 1e-3).estimate
+    twice = inertia_read(f, v, t, 5, 1e-3, v_wide=0.5 * v).estimate
+    assert once.wider is None and twice.value == once.value
+    assert math.isclose(twice.wider, 2.0 * once.value, rel_tol=1e-9)
+    assert math.isclose(twice.stderr, math.hypot(once.stderr, once.value), rel_tol=1e-9)
+    # read again on the same velocity nothing moves, and on one scaled by 2 it falls to I/2 (a
+    # smoothing of the wider slope's own, not the pull of noise towards 0): σ is the jackknife's
+    for v_wide in (v, 2.0 * v):
+        again = inertia_read(f, v, t, 5, 1e-3, v_wide=v_wide).estimate
+        assert again.wider is None and math.isclose(again.stderr, once.stderr, rel_tol=1e-9)
+
+
 def test_ripple_wavelength_is_read_off_the_spectrum_against_position():
     # strokes back and forth over 0.3 (position units) at varying speed; the relative residual
     # is a ripple of wavelength 0.0237 with a second harmonic: the strongest peak of its
