@@ -682,7 +682,7 @@ def recording_inertia(rec: Recording) -> InertiaNote:
     # term at all (not where there is too little steady sliding to look: a sweep whose levels
     # the fit could not find), or reads one not told from 0; never of a column whose name says
     # it is applied (a drive's or a motor's torque)
-    # (both readings, where the velocity was read twice: σ then holds their move, and a wrist whose
+    # (both readings, where the velocity was read twice: σ then holds the rise, and a wrist whose
     # 0.050 rose to 0.085 over the wider slope is not an inertia told from none)
     doubt = (est is not None and not est.usable
              and all(abs(i) < 2.0 * est.stderr for i in (est.value, est.wider) if i is not None))
@@ -931,8 +931,8 @@ JACKKNIFE_BLOCKS = 10
 class InertiaEstimate:
     value: float
     stderr: float
-    # (``inertia_read``) the reading with the velocity taken over a wider slope, where that
-    # move is part of ``stderr``; None where it was not taken
+    # (``inertia_read``) the reading with the velocity taken over a wider slope, where it rose
+    # there and that rise is part of ``stderr``; None where it was not taken or did not rise
     wider: float | None = None
 
     @property
