@@ -543,6 +543,32 @@ def diagnosis_travel_force_figure(d) -> go.Figure:
                    f"measured − model ({unit})")
 
 
+def diagnosis_travel_spring_figure(d) -> go.Figure:
+    """A force in proportion to the travel (``Diagnosis.travel_spring``): the residual the base
+    refitted alone leaves in the steady sliding against the position, each less its run's mean
+    (the least squares' own view), binned, moving up and moving down, beside the slope that
+    keeps its sign both ways. Friction's slope mirrors between the two; a spring's lies on both."""
+    ts = d.travel_spring
+    what, unit = _diag_unit(d)
+    pu = d.params_before.units.get("position", "")
+    lo, hi = ts.within_range
+    bins = len(ts.up)
+    x = lo + (np.arange(bins) + 0.5) * (hi - lo) / bins
+
+    def gaps(means):  # an empty bin (None) is a gap in the line
+        return [np.nan if m is None else m for m in means]
+
+    fig = _Fig()
+    fig.add_trace(_scatter(x, gaps(ts.up), mode="markers+lines", name="moving up", marker=dict(color=COLORS[0])))
+    fig.add_trace(_scatter(x, gaps(ts.down), mode="markers+lines", name="moving down", marker=dict(color=COLORS[1])))
+    fig.add_trace(_scatter([lo, hi], [ts.rate * lo, ts.rate * hi], mode="lines",
+                           name=f"keeps its sign both ways: {ts.rate:.3g} ± {ts.sd:.2g} per {pu or 'unit'}",
+                           line=dict(color="#444444", dash="dash")))
+    return _layout(fig, "A force in proportion to the travel: residual against position within each run",
+                   f"position less its run's mean ({shown_unit(pu)})" if pu else "position less its run's mean",
+                   f"measured − model, less its run's mean ({unit})")
+
+
 def diagnosis_cv_figure(d) -> go.Figure:
     """Out-of-sample evidence of the last round's candidates: pooled held-out RMS gain and the
     share of informative folds improved. A candidate not cross-validated (its in-sample gain
@@ -570,4 +596,5 @@ def diagnosis_cv_figure(d) -> go.Figure:
 def diagnosis_report_figures(d) -> list:
     return [diagnosis_steps_figure(d), diagnosis_signal_figure(d), *diagnosis_residual_figures(d),
             *([diagnosis_travel_force_figure(d)] if getattr(d, "travel_force", None) is not None else []),
+            *([diagnosis_travel_spring_figure(d)] if getattr(d, "travel_spring", None) is not None else []),
             diagnosis_cv_figure(d)]

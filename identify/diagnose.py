@@ -2406,6 +2406,103 @@ TRAVEL_FORCE_BINS = 24  # bins of one period the residual is folded into (``Trav
 TRAVEL_FORCE_MIN_GAIN = 0.03
 
 
+class SlidingRuns(NamedTuple):
+    """The sliding samples of a residual, cut into runs (contiguous sliding one way), each run's
+    own offset — S(v)'s misfit at its speed, a drift — taken out (``within``): what a force
+    along the travel is read from (``travel_force``, ``travel_spring``)."""
+    idx: np.ndarray  # the sliding samples, indices into the comparison
+    up: np.ndarray  # moving the positive way, per sliding sample
+    run: np.ndarray  # its run, per sliding sample
+    count: np.ndarray  # samples per run
+
+    def within(self, col: np.ndarray) -> np.ndarray:
+        """``col`` less its run's mean: the least squares with an offset per run, by
+        Frisch–Waugh–Lovell, on the residual and on the columns alike."""
+        return col - (np.bincount(self.run, col) / self.count)[self.run]
+
+
+def sliding_runs(cmp_: Comparison, mask: np.ndarray) -> SlidingRuns | None:
+    """The runs of ``mask``'s sliding samples (|v| above the comparison's rest), or None where
+    there are too few each way to say anything along the travel."""
+    v = cmp_.velocity
+    idx = np.flatnonzero(mask & (np.abs(v) > cmp_.v_rest))
+    up = v[idx] > 0
+    if len(idx) < 20 * TRAVEL_FORCE_BLOCKS or up.sum() < 10 * TRAVEL_FORCE_BLOCKS or (~up).sum() < 10 * TRAVEL_FORCE_BLOCKS:
+        return None
+    run = np.cumsum(np.concatenate([[True], (np.diff(idx) != 1) | (up[1:] != up[:-1])])) - 1
+    return SlidingRuns(idx, up, run, np.bincount(run))
+
+
+class SignKeeping(NamedTuple):
+    """A force along the travel read each way of the motion (``sign_keeping``): the part keeping
+    its sign, per column, the part following the motion's, and the evidence it is one force."""
+    keeps: np.ndarray
+    follows: np.ndarray
+    sd: float  # the part keeping its sign: σ per column, jackknifed over TRAVEL_FORCE_BLOCKS blocks
+    halves: tuple  # in the slower and the faster half of the sliding: (size, σ per column) each
+    speed_gap: float  # how far the two halves lie apart, and that difference's σ
+    speed_gap_sd: float
+    gain: float  # the share of the sliding residual's RMS the part keeping its sign takes out
+
+
+def sign_keeping(runs: SlidingRuns, X: np.ndarray, y: np.ndarray, speed: np.ndarray) -> SignKeeping:
+    """Least squares of ``y`` (the sliding residual, ``within`` its runs) on ``X``: m columns
+    moving up, then the same m moving down (each ``within`` its runs). Friction opposes the
+    motion, so its part changes sign with the direction; a force along the travel — a motor's
+    cogging, gravity on a joint, a spring or a cable — does not: the half-sum of the two
+    directions' coefficients is that force, the half-difference the part following the motion.
+    ``speed`` is |v| per sliding sample."""
+    up = runs.up
+    m = X.shape[1] // 2
+
+    def parts(rows):
+        c = np.linalg.lstsq(X[rows], y[rows], rcond=None)[0]
+        return 0.5 * (c[:m] + c[m:]), 0.5 * (c[:m] - c[m:])
+
+    def keeping(rows):
+        """The part keeping its sign on ``rows`` (a boolean mask of the sliding samples), and its
+        σ per column, jackknifed over TRAVEL_FORCE_BLOCKS contiguous blocks of them."""
+        at = np.flatnonzero(rows)
+        if min((rows & up).sum(), (rows & ~up).sum()) < 10 * TRAVEL_FORCE_BLOCKS:
+            return np.full(m, np.nan), math.inf  # one way too few to say (not shown)
+        block = np.full(len(y), -1)
+        block[at] = np.minimum(np.arange(len(at)) * TRAVEL_FORCE_BLOCKS // len(at), TRAVEL_FORCE_BLOCKS - 1)
+        jack = np.array([parts(rows & (block != b))[0] for b in range(TRAVEL_FORCE_BLOCKS)])
+        nb = TRAVEL_FORCE_BLOCKS
+        return parts(rows)[0], math.sqrt((nb - 1) / nb * np.sum((jack - jack.mean(axis=0)) ** 2) / m)
+
+    everywhere = np.ones(len(y), dtype=bool)
+    keeps, follows = parts(everywhere)
+    _, sd = keeping(everywhere)
+    # a force along the travel is the same at every speed; a disturbance periodic in time (a
+    # limit cycle, a hum) reads as one along the travel only at one speed, its period in
+    # position the speed's multiple: the slower and the faster half of the sliding must both
+    # show it, and agree
+    med = np.median(speed)
+    slow = speed < med
+    if slow.mean() < 0.25:
+        # speeds in levels, the slowest holding half the sliding or more: split above it
+        slow = speed <= med
+    (ks, ss), (kf, sf) = keeping(slow), keeping(~slow)
+    # the force keeping its sign, either way: within(u·c) + within(d·c) = within(c)
+    force = (X[:, :m] + X[:, m:]) @ keeps
+    gain = 1.0 - math.sqrt(np.mean((y - force) ** 2) / max(np.mean(y ** 2), 1e-300))
+    size = np.linalg.norm
+    return SignKeeping(keeps, follows, sd, ((float(size(ks)), ss), (float(size(kf)), sf)), float(size(ks - kf)),
+                       math.hypot(ss, sf), float(gain))
+
+
+def _shown_along(size: float, following: float, sd: float, halves: tuple, speed_gap: float, speed_gap_sd: float,
+                 gain: float) -> bool:
+    """A force along the travel is said where it is clear of none by TRAVEL_FORCE_SIGMAS σ, twice
+    the part following the motion, seen at both halves of the speeds alike (each by 3 σ, the
+    two within 3 σ of each other), and takes out TRAVEL_FORCE_MIN_GAIN of the sliding residual's
+    RMS."""
+    return bool(size > TRAVEL_FORCE_SIGMAS * sd and size > 2.0 * following
+                and all(a > 3.0 * s for a, s in halves) and speed_gap < 3.0 * speed_gap_sd
+                and gain >= TRAVEL_FORCE_MIN_GAIN)
+
+
 @dataclass
 class TravelForce:
     """A force periodic along the travel that keeps its sign whichever way the motion goes
@@ -2432,43 +2529,28 @@ class TravelForce:
 
     @property
     def shown(self) -> bool:
-        """Clear of none by TRAVEL_FORCE_SIGMAS σ, twice the part following the motion, seen at
-        both halves of the speeds alike (each by 3 σ, the two within 3 σ of each other), and
-        taking out TRAVEL_FORCE_MIN_GAIN of the sliding residual's RMS."""
-        return bool(self.amplitude > TRAVEL_FORCE_SIGMAS * self.sd and self.amplitude > 2.0 * self.following
-                    and all(a > 3.0 * s for a, s in self.halves) and self.speed_gap < 3.0 * self.speed_gap_sd
-                    and self.gain >= TRAVEL_FORCE_MIN_GAIN)
+        return _shown_along(self.amplitude, self.following, self.sd, self.halves, self.speed_gap, self.speed_gap_sd,
+                            self.gain)
 
 
 def travel_force(cmp_: Comparison, resid: np.ndarray, mask: np.ndarray, lam_min: float) -> TravelForce | None:
     """The part of the residual periodic along the travel that keeps its sign both ways, or
-    None. Friction opposes the motion, so a ripple of it (``position_ripple``, a factor on F)
-    changes sign with the direction; a force along the travel — a motor's cogging, gravity on a
-    joint, a spring or a cable — does not, and no friction effect holds it. At the strongest
-    wavelength of the residual against position in the sliding, each direction is fitted as an
-    offset per run + A_d·sin θ + B_d·cos θ: the half-sum of the two directions' (A, B) is the
-    force that keeps its sign, the half-difference the part that follows the motion."""
+    None. At the strongest wavelength of the residual against position in the sliding, each
+    direction is fitted as an offset per run + A_d·sin θ + B_d·cos θ (``sign_keeping``)."""
     if cmp_.space != "friction":
         return None
-    v = cmp_.velocity
-    sliding = mask & (np.abs(v) > cmp_.v_rest)
-    idx = np.flatnonzero(sliding)
-    up = v[idx] > 0
-    if len(idx) < 20 * TRAVEL_FORCE_BLOCKS or up.sum() < 10 * TRAVEL_FORCE_BLOCKS or (~up).sum() < 10 * TRAVEL_FORCE_BLOCKS:
+    runs = sliding_runs(cmp_, mask)
+    if runs is None:
         return None
-    # each run (contiguous sliding one way) has an offset of its own — S(v)'s misfit at its speed,
-    # a drift — taken out of the residual and of the columns alike (the least squares with an
-    # offset per run, by Frisch–Waugh–Lovell): a slow run shorter than a period had leaked its
-    # level into the wave (a linear-motor stage made apart, its cogging read 0.76 N slow, 1.10 fast)
-    run = np.cumsum(np.concatenate([[True], (np.diff(idx) != 1) | (up[1:] != up[:-1])])) - 1
-    count = np.bincount(run)
-
-    def within(col):
-        return col - (np.bincount(run, col) / count)[run]
-
+    # each run has an offset of its own taken out of the residual and of the columns alike: a
+    # slow run shorter than a period had leaked its level into the wave (a linear-motor stage
+    # made apart, its cogging read 0.76 N slow, 1.10 fast)
+    idx, up, within = runs.idx, runs.up, runs.within
     x, y = cmp_.path[idx], within(resid[idx])
     spread = np.zeros_like(resid)
     spread[idx] = y
+    sliding = np.zeros(len(resid), dtype=bool)
+    sliding[idx] = True
     lams = _ripple_wavelengths(cmp_, spread, np.ones_like(resid), lam_min, 1, keep=sliding)
     if not lams:
         return None
@@ -2502,54 +2584,162 @@ def travel_force(cmp_: Comparison, resid: np.ndarray, mask: np.ndarray, lam_min:
     step = grid[1] - grid[0]
     lam = float(minimize_scalar(rss, bounds=(best - step, best + step), method="bounded",
                                 options={"xatol": 1e-5 * lams[0]}).x)
-    X = columns(lam)
-
-    def parts(rows):
-        c = np.linalg.lstsq(X[rows], y[rows], rcond=None)[0]
-        return 0.5 * (c[0:2] + c[2:4]), 0.5 * (c[0:2] - c[2:4])
-
-    def keeping(rows):
-        """The part keeping its sign on ``rows`` (a boolean mask of the sliding samples), and its
-        σ per component, jackknifed over TRAVEL_FORCE_BLOCKS contiguous blocks of them."""
-        at = np.flatnonzero(rows)
-        if min((rows & up).sum(), (rows & ~up).sum()) < 10 * TRAVEL_FORCE_BLOCKS:
-            return np.full(2, np.nan), math.inf  # one way too few to say (not shown)
-        block = np.full(len(idx), -1)
-        block[at] = np.minimum(np.arange(len(at)) * TRAVEL_FORCE_BLOCKS // len(at), TRAVEL_FORCE_BLOCKS - 1)
-        jack = np.array([parts(rows & (block != b))[0] for b in range(TRAVEL_FORCE_BLOCKS)])
-        nb = TRAVEL_FORCE_BLOCKS
-        return parts(rows)[0], math.sqrt((nb - 1) / nb * np.sum((jack - jack.mean(axis=0)) ** 2) / 2.0)
-
-    everywhere = np.ones(len(idx), dtype=bool)
-    keeps, follows = parts(everywhere)
-    _, sd = keeping(everywhere)
-    # a force along the travel is the same at every speed; a disturbance periodic in time (a
-    # limit cycle, a hum) reads as one along the travel only at one speed, its period in
-    # position the speed's multiple: the slower and the faster half of the sliding must both
-    # show it, and agree
-    speed = np.abs(v[idx])
-    med = np.median(speed)
-    slow = speed < med
-    if slow.mean() < 0.25:
-        # speeds in levels, the slowest holding half the sliding or more: split above it
-        slow = speed <= med
-    (ks, ss), (kf, sf) = keeping(slow), keeping(~slow)
-    sn, cs = waves(lam)
-    wave = within(keeps[0] * sn + keeps[1] * cs)
-    gain = 1.0 - math.sqrt(np.mean((y - wave) ** 2) / max(np.mean(y ** 2), 1e-300))
+    k = sign_keeping(runs, columns(lam), y, np.abs(cmp_.velocity[idx]))
     frac = np.mod(x / lam, 1.0)
-    k = np.minimum((frac * TRAVEL_FORCE_BINS).astype(int), TRAVEL_FORCE_BINS - 1)
+    b = np.minimum((frac * TRAVEL_FORCE_BINS).astype(int), TRAVEL_FORCE_BINS - 1)
 
     def folded(rows):
-        n = np.bincount(k[rows], minlength=TRAVEL_FORCE_BINS)
-        tot = np.bincount(k[rows], y[rows], minlength=TRAVEL_FORCE_BINS)
+        n = np.bincount(b[rows], minlength=TRAVEL_FORCE_BINS)
+        tot = np.bincount(b[rows], y[rows], minlength=TRAVEL_FORCE_BINS)
         mean = np.where(n > 0, tot / np.maximum(n, 1), np.nan)
         return tuple(float(m) if np.isfinite(m) else None for m in mean - np.nanmean(mean))  # (None: JSON's null)
 
-    return TravelForce(lam, float(np.hypot(*keeps)), sd, float(np.hypot(*follows)),
-                       float(math.atan2(keeps[1], keeps[0])), folded(up), folded(~up),
-                       ((float(np.hypot(*ks)), ss), (float(np.hypot(*kf)), sf)), float(np.hypot(*(ks - kf))),
-                       math.hypot(ss, sf), float(gain))
+    return TravelForce(lam, float(np.hypot(*k.keeps)), k.sd, float(np.hypot(*k.follows)),
+                       float(math.atan2(k.keeps[1], k.keeps[0])), folded(up), folded(~up),
+                       k.halves, k.speed_gap, k.speed_gap_sd, k.gain)
+
+
+@dataclass
+class TravelSpring:
+    """A force in proportion to the travel that keeps its sign whichever way the motion goes
+    (``travel_spring``): ``rate`` in the force's units per the position's, the force being
+    rate·(x − centre), its constant part any run's offset. A spring — a valve's actuator spring
+    whose datasheet rate, 4 % off, left 2 kN/m in the net force a user wrote — gravity on a joint
+    near its angle, a cable: no friction effect holds it, and a periodic search cannot see it."""
+    rate: float
+    sd: float  # its σ, jackknifed over TRAVEL_FORCE_BLOCKS blocks of the sliding
+    following: float  # the rate of the part that follows the motion's sign
+    centre: float  # the middle of the travel compared
+    span: float  # the travel compared, so that rate × span is the force's range over it
+    halves: tuple = ()  # (|rate|, σ) in the slower and the faster half of the sliding
+    speed_gap: float = 0.0
+    speed_gap_sd: float = 0.0
+    gain: float = 0.0  # the share of the sliding residual's RMS it takes out (each run's own offset out first)
+    # the evidence to look at, the least squares' own (Frisch–Waugh–Lovell): the residual against
+    # the position, each less its run's mean and the slopes taken out beside (``travel_spring``),
+    # in TRAVEL_FORCE_BINS bins of the second over ``within_range``; the mean moving up and moving
+    # down (None where a bin has no sample). The slope of both is ``rate`` where a force keeps its sign
+    within_range: tuple = (0.0, 0.0)
+    up: tuple = ()
+    down: tuple = ()
+    # read with a drift in time beside it (``travel_spring``: where without it the halves disagree)
+    drift_beside: bool = False
+
+    @property
+    def shown(self) -> bool:
+        return _shown_along(abs(self.rate), abs(self.following), self.sd, self.halves, self.speed_gap,
+                            self.speed_gap_sd, self.gain)
+
+
+class AlongTravel(NamedTuple):
+    """What a force along the travel is read from where no ``Comparison`` is built (``fit``'s
+    recordings, the column as logged): the path, its velocity and mean acceleration, the speed
+    under which it rests; nothing averaged."""
+    path: np.ndarray
+    velocity: np.ndarray
+    v_rest: float
+    acceleration: np.ndarray | None = None
+    time: np.ndarray | None = None
+    space: str = "friction"
+
+    def filtered(self, a: np.ndarray) -> np.ndarray:
+        return a
+
+
+def travel_spring(cmp_: Comparison | AlongTravel, resid: np.ndarray, mask: np.ndarray) -> TravelSpring | None:
+    """The part of the residual in proportion to the travel that keeps its sign both ways, or
+    None: each direction fitted as an offset per run + k_d·x (``sign_keeping``). Within a run a
+    slope in x is one in time too, but friction's — a transition's tail after a reversal, a
+    drift — follows the motion's sign and falls in the half-difference."""
+    if cmp_.space != "friction":
+        return None
+    runs = sliding_runs(cmp_, mask)
+    if runs is None:
+        return None
+    at = cmp_.path[mask]
+    centre = 0.5 * float(at.max() + at.min())
+    # the path as the measurement sees it (the comparison's moving average), from the middle
+    x = cmp_.filtered(cmp_.path - centre)[runs.idx]
+    u, d = runs.up.astype(float), (~runs.up).astype(float)
+    vel = cmp_.velocity[runs.idx]
+    t = cmp_.time[runs.idx] if getattr(cmp_, "time", None) is not None else None
+    # what else rises along a run whichever way, taken out beside the runs' offsets: S(v)'s slope
+    # where a run's speed varies along it (a valve made apart, its positioner's fast strokes at
+    # 31–68 mm/s about 40, read its spring 25 % short, 3.7 σ), each way apart; and an inertia off
+    # by ΔI, which leaves −ΔI·ā in friction taken from an applied force (ā > 0 where a run
+    # starts, < 0 where it stops). Where friction is logged as such the acceleration goes beside
+    # it too: the model's σ2·v is at the step's middle (v its backward difference, eq. (3) over
+    # the step), half a sample behind the log's, and leaves σ2·(Δt/2)·ẍ — on a crank (ẍ = −ω²x)
+    # a spring of σ2·Δt·ω²/2, read 6.4 ± 0.3 N/m where that is 5.9 and said; there a spring and a
+    # mass cannot be told apart, and with ẍ beside it its σ says so (ẍ over a tenth of a
+    # stroke, ``stroke_scale_window``: over the 5 samples of the path's smoothing the noise of ẍ,
+    # which the model's σ2·v shares, read 8.6 ± 0.5 N/m on its own)
+    acc = cmp_.acceleration
+    if acc is None and t is not None:
+        acc = mean_acceleration(cmp_.velocity, cmp_.time, stroke_scale_window(cmp_))
+    nuisance = [u * vel, d * vel] + ([] if acc is None else [acc[runs.idx]])
+    ts, X, y = _spring_beside(runs, x, resid, nuisance, np.abs(vel))
+    drift = False
+    if not ts.shown and t is not None:
+        # where that is not said, read again with a drift in time beside it: its sign follows the
+        # motion's, and along a run it reads as a slope in x of ġ·|S|/|v| whichever way, told from
+        # a spring's (the same at every speed) by the runs' speeds only — so only where it is
+        # asked (a vertical axis made apart warming up read its 3 kN/m gas spring 3 % high in its
+        # slower half, 3.7 σ from the faster; with the drift beside it, 2,998 ± 1 both halves
+        # alike). Beside it always, a valve made apart whose strokes ran at three speeds read its
+        # spring 5,528 ± 625 N/m for 7,500, where 7,462 ± 218 without
+        again = _spring_beside(runs, x, resid, nuisance + [(u - d) * (t - t.mean())], np.abs(vel))
+        if again[0].shown:
+            (ts, X, y), drift = again, True
+    xw = X[:, 0] + X[:, 1]  # the position as the least squares sees it: less its run's mean and the slopes beside
+    lo, hi = float(xw.min()), float(xw.max())
+    b = np.clip(((xw - lo) / max(hi - lo, 1e-300) * TRAVEL_FORCE_BINS).astype(int), 0, TRAVEL_FORCE_BINS - 1)
+
+    def binned(rows):
+        n = np.bincount(b[rows], minlength=TRAVEL_FORCE_BINS)
+        mean = np.bincount(b[rows], y[rows], minlength=TRAVEL_FORCE_BINS) / np.maximum(n, 1)
+        return tuple(float(m) if c > 0 else None for m, c in zip(mean, n))  # (None: JSON's null)
+
+    return dataclasses.replace(ts, centre=centre, span=float(np.ptp(at)), within_range=(lo, hi), up=binned(runs.up),
+                               down=binned(~runs.up), drift_beside=drift)
+
+
+def stroke_scale_window(cmp_: Comparison | AlongTravel) -> int:
+    """Samples (odd) to take a mean acceleration over beside a slope along the runs: a tenth of
+    the median stroke (sliding one way, all of it, not only its steady part), so that the
+    position's noise, twice differenced, is averaged out on the motion's own scale, and never
+    under the path's smoothing window."""
+    every = sliding_runs(cmp_, np.ones(len(cmp_.velocity), bool))
+    stroke = 0 if every is None else int(np.median(every.count))
+    return 2 * (max(stroke // 10, int(getattr(cmp_, "window", 3)), 3) // 2) + 1
+
+def spring_note(ts: TravelSpring, model: str, fu: str, pu: str) -> str:
+    """The diagnosis's note on a force in proportion to the travel, as ``model`` leaves it."""
+    return (f"a force in proportion to the travel: what {model} leaves in the steady sliding, each run less its "
+            f"own mean, rises by {ts.rate:.4g} ± {ts.sd:.2g} {fu}/{pu} along the travel whichever way the motion "
+            f"goes ({abs(ts.rate) * ts.span:.3g} {fu} over the {ts.span:.3g} {pu} compared; the part following the "
+            f"motion's sign, as a friction's would, {ts.following:.2g} {fu}/{pu}"
+            + ("; read with a drift in time beside it, which the slower and the faster runs asked for"
+               if ts.drift_beside else "")
+            + "): a spring, gravity or a cable, or a spring rate taken off the applied force wrongly, not a "
+            "friction effect — no candidate holds it; compensate it apart from friction; it is left in the "
+            "friction compared (a friction effect may take up a part of it)")
+
+
+def _spring_beside(runs: SlidingRuns, x: np.ndarray, resid: np.ndarray, nuisance: list,
+                   speed: np.ndarray) -> tuple["TravelSpring", np.ndarray, np.ndarray]:
+    """``travel_spring``'s least squares: each direction's slope in ``x`` of ``resid`` (at the
+    sliding samples), with each run's offset and the ``nuisance`` columns taken out beside it
+    (Frisch–Waugh–Lovell); the reading (its evidence not yet binned) and the columns and
+    residual as the least squares saw them."""
+    u, d = runs.up.astype(float), (~runs.up).astype(float)
+    X = np.column_stack([runs.within(u * x), runs.within(d * x)])
+    y = runs.within(resid[runs.idx])
+    Z = np.column_stack([runs.within(c) for c in nuisance])
+    X, y = (c - Z @ np.linalg.lstsq(Z, c, rcond=None)[0] for c in (X, y))
+    k = sign_keeping(runs, X, y, speed)
+    return (TravelSpring(float(k.keeps[0]), k.sd, float(k.follows[0]), 0.0, 0.0, k.halves, k.speed_gap,
+                         k.speed_gap_sd, k.gain), X, y)
 
 
 def _screen_starts(name: str, term: Term, cmp_: Comparison, resid: np.ndarray, base: np.ndarray) -> list:
@@ -3026,6 +3216,8 @@ class Diagnosis:
     base_off: bool = False
     # a force periodic along the travel that keeps its sign both ways (``travel_force``), where shown
     travel_force: TravelForce | None = None
+    # a force in proportion to the travel that keeps its sign both ways (``travel_spring``), where shown
+    travel_spring: TravelSpring | None = None
     # the recording's normal load's SI unit, N or N·m (a tilting moment), where it has one
     load_unit: str | None = None
     # a candidate that passed where the model before it already left under the noise floor beside
@@ -3095,7 +3287,9 @@ class Diagnosis:
                 + [f"{c['effects'][0]} and {c['effects'][1]} confounded" for c in self.confounded]
                 + [f"{c['name']} passed, not named (the model written does not use it)" for c in self.unused]
                 + ([f"a force along the travel, not a friction effect (period {self.travel_force.wavelength:.3g}, "
-                    f"amplitude {self.travel_force.amplitude:.3g})"] if self.travel_force is not None else []))
+                    f"amplitude {self.travel_force.amplitude:.3g})"] if self.travel_force is not None else [])
+                + ([f"a force in proportion to the travel, not a friction effect (rate {self.travel_spring.rate:.3g})"]
+                   if self.travel_spring is not None else []))
 
     @property
     def effect_params(self) -> dict | None:
@@ -3141,6 +3335,7 @@ class Diagnosis:
             "under_noise": self.under_noise,
             "base_off": self.base_off,
             "travel_force": None if self.travel_force is None else asdict(self.travel_force),
+            "travel_spring": None if self.travel_spring is None else asdict(self.travel_spring),
             "elsewhere": [c["name"] for c in self.elsewhere], "written_effects": self.written_effects(),
             "candidates": self.candidates, "notes": list(self.notes),
             "work": None if self.work is None else asdict(self.work),
@@ -3188,6 +3383,12 @@ class Diagnosis:
             L.append(f"Seen, not a friction effect: a force along the travel, of period {tf.wavelength:.4g} {pu} and "
                      f"amplitude {tf.amplitude:.3g} ± {tf.sd:.2g} {u}, keeps its sign whichever way the motion goes "
                      f"(cogging, gravity, a spring or a cable; notes).")
+        if self.travel_spring is not None:
+            ts = self.travel_spring
+            L.append(f"Seen, not a friction effect: a force in proportion to the travel, {ts.rate:.3g} ± {ts.sd:.2g} "
+                     f"{u}/{pu} ({abs(ts.rate) * ts.span:.3g} {u} over the {ts.span:.3g} {pu} compared), keeps its "
+                     f"sign whichever way the motion goes (a spring, gravity, a cable, or a spring rate taken off "
+                     f"the force wrongly; notes).")
         if not self.effects and self.noise > 0 and self.rms_base_refit > BASE_OFF_NOISE * self.noise:
             # nothing named is not "nothing there": the rest the base refitted alone leaves is said
             L.append(f"Left unexplained: the base refitted alone still leaves {self.rms_base_refit / self.noise:.1f} × "
@@ -3196,6 +3397,8 @@ class Diagnosis:
                         f"which no candidate ({', '.join(self.settings.candidates)}) takes up")
                      + ("" if self.travel_force is None else "; the force along the travel above is "
                         + ("taken out of it" if self.settings.travel_force_out else "part of it"))
+                     + ("" if self.travel_spring is None else "; the force in proportion to the travel above is "
+                        "part of it")
                      + " (the regimes below say where).")
         for c in self.unused:
             L.append(f"Passed, not named: {c['name']} improved the held-out prediction beside a free steady curve, but "
@@ -3832,31 +4035,40 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
             prior_u = np.concatenate([prior_u, _entry_to_u(tm, e["params"])])
     base = refit_base(engine, base_params, prior_terms, prior_u, allm, s.refit_curve)
     # what the base refitted alone leaves along the travel that no friction effect holds
-    tf = travel_force(cmp_, meas - base.null.pred, allm, ripple_min_wavelength(cmp_))
-    if tf is not None and tf.shown:
-        pu, fu = params.units.get("position", ""), params.units.get("force", "")
-        out = s.travel_force_out
+    # a force in proportion to the travel (a spring: the periodic search below does not see it),
+    # read in the steady sliding, where friction is S(v) times the effects and no turn's
+    # transition, misfit at one end of the travel moving up and at the other moving down, enters
+    resid_alone = meas - base.null.pred
+    ts = travel_spring(cmp_, resid_alone, allm & steady_sliding(cmp_))
+    ts = ts if ts is not None and ts.shown else None
+    tf = travel_force(cmp_, resid_alone, allm, ripple_min_wavelength(cmp_))
+    tf = tf if tf is not None and tf.shown else None
+    out = s.travel_force_out
+    pu, fu = params.units.get("position", ""), params.units.get("force", "")
+    taken_out = ("; it is taken out of the friction compared, and the base (n, σ1, S(v), the curve) refitted again "
+                 "without it, before the candidates are judged (every gap here and the figures are without it), so "
+                 "that none is credited with the part of it a friction effect can fit" if out else "")
+    if ts is not None:
+        cmp_.notes.append(spring_note(ts, "the base refitted alone", fu, pu))
+    if tf is not None:
         cmp_.notes.append(f"a force along the travel: what the base refitted alone leaves in the sliding holds a "
                           f"period of {tf.wavelength:.4g} {pu} of amplitude {tf.amplitude:.3g} ± {tf.sd:.2g} {fu} "
                           f"that keeps its sign whichever way the motion goes (the part following the motion's "
                           f"sign, as a friction ripple's does, {tf.following:.2g}): cogging, gravity, a spring or a "
                           f"cable, not a friction effect — no candidate holds it; compensate it apart from friction"
-                          + ("; it is taken out of the friction compared, and the base (n, σ1, S(v), the curve) "
-                             "refitted again without it, before the candidates are judged (every gap here and the "
-                             "figures are without it), so that none is credited with the part of it a friction "
-                             "effect can fit" if out else ""))
-        if out:
-            # a ball screw's cogging of period π rad, left in, was named a friction ripple of 3.3 rad
-            # that took 10 % of the gap: a ripple follows the motion's sign and fits a part of any
-            # such force. A new array, not in place: ``measured`` may be the recording's own friction
-            # column; the engine and every gap read ``cmp_.measured``
-            meas = cmp_.measured = meas - tf.along(cmp_)
-            pred_given_c = pred_given + model_nuisance(meas - pred_given, allm, cmp_.memory_offset,
-                                                       cmp_.acceleration).correction
-            rms0 = _rms((meas - pred_given_c)[allm])
-            # the base as if the force had not been there: refitted with it in, its S(v) and curve
-            # leaned on the force's part a friction level can hold
-            base = refit_base(engine, base_params, prior_terms, prior_u, allm, s.refit_curve)
+                          + taken_out)
+    if out and tf is not None:
+        # a ball screw's cogging of period π rad, left in, was named a friction ripple of 3.3 rad
+        # that took 10 % of the gap: a ripple follows the motion's sign and fits a part of any
+        # such force. A new array, not in place: ``measured`` may be the recording's own friction
+        # column; the engine and every gap read ``cmp_.measured``
+        meas = cmp_.measured = meas - tf.along(cmp_)
+        pred_given_c = pred_given + model_nuisance(meas - pred_given, allm, cmp_.memory_offset,
+                                                   cmp_.acceleration).correction
+        rms0 = _rms((meas - pred_given_c)[allm])
+        # the base as if the force had not been there: refitted with it in, its S(v) and curve
+        # leaned on the force's part a friction level can hold
+        base = refit_base(engine, base_params, prior_terms, prior_u, allm, s.refit_curve)
     if base.curve_note:
         cmp_.notes.append(base.curve_note)
     alone, refit_curve, base_refit, null = base.alone, base.refit_curve, base.refit, base.null
@@ -4454,7 +4666,7 @@ def diagnose(rec: Recording, params: FrictionParams, *, progress=None, settings:
                      unused=unused, work=DiagnosisWork(perf_counter() - started, engine.sims, engine.sim_seconds),
                      reading={"window": int(cmp_.window), "v_rest": float(cmp_.v_rest),
                               "min_excursion": float(cmp_.min_excursion)}, base_off=base_off,
-                     travel_force=tf if tf is not None and tf.shown else None,
+                     travel_force=tf, travel_spring=ts,
                      load_unit=rec.units.get("normal_load") if rec.normal_load is not None else None,
                      under_noise=under_noise)
 

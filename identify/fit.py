@@ -29,9 +29,10 @@ from .errors import IdentificationError
 from .markov import (MISFIT_P, NAMES, STRIBECK_MIN_SPEEDS, Levels, distinct_speeds, fit_sides_honest, misfit_scale,
                      misfits, stribeck_plus_viscous, widened_stderr)
 from .mle import Gaussian, PreslidingData, fit_transition_curve
-from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, MIN_REACH_CROSSINGS, TREND_BESIDE, Prepared,
+from .segment import (GROSS_SLIDING, MIN_BRANCH_POINTS, MIN_REACH_CROSSINGS, TREND_BESIDE, TREND_NOT_SPEED, Prepared,
                       beyond_levels, constant_velocity_levels, crossing_range, crossings, fast_runs, force_branches,
-                      motion_branches, noise_sd, prepare, presliding_reach, runs_under_window, sliding_levels)
+                      motion_branches, noise_sd, prepare, presliding_reach, runs_under_window, sliding_levels,
+                      steady_runs)
 from .threads import one_blas_thread
 
 KNOT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 0.9, 1.0)  # of the force change of the branch reaching furthest in z
@@ -124,18 +125,40 @@ def misfit_in_time(levels: Levels, fit, sign: int) -> str:
             + "; `diagnose` tests a drift in time")
 
 
+def form_untested(side: str, dec) -> str | None:
+    """The note for a side whose S(v) form has as many free parameters as it has levels (a
+    ``markov.fit_side_honest`` decision, χ² for 0 degrees of freedom), else None: the χ² cannot
+    test the form then (a valve made apart, two levels a side, wrote σ2 2404 ± 160 N·s/m for
+    2000: its Stribeck tail and a spring left in the force were in the two levels, unsaid)."""
+    if dec.fit.dof != 0:
+        return None
+    return (f"{side} side: {dec.model} passes through its levels exactly (0 degrees of freedom): its σ count the "
+            f"levels' noise alone and nothing tests the form, which takes up whatever else moves the levels (a force "
+            f"along the travel, a drift); more speeds on this side would test it")
+
+
 def left_out(levels: Levels, unit: str = "") -> str:
     """The runs of steady velocity the segmentation did not take as settled levels, in words ("" if none)."""
     parts, said = [], ""
     if levels.opposing:
         parts.append(f"{levels.opposing} run(s) whose friction opposes their velocity (a presliding spring giving "
-                     f"back, not sliding)")
+                     f"back, not sliding"
+                     + (f"; {levels.opposing_strokes} of them over a tenth of the travel or more, which no presliding "
+                        f"spring gives back over: the force holds a constant force beyond friction — a weight on a "
+                        f"vertical axis, a counterbalance, a force sensor's offset — which the model has no term for: "
+                        f"write the column less it (m·g, or the force read at rest with the drive off)"
+                        if levels.opposing_strokes else "") + ")")
     if levels.creep:
         parts.append(f"{levels.creep} run(s) of creep (weak or short beside the other levels, or starting within twice "
                      f"the presliding range of a reversal: segment.sliding_only, constant_velocity_levels)")
     if levels.trend_alone:
         parts.append(f"{levels.trend_alone} run(s) whose friction trends, on a side with under {TREND_BESIDE} settled "
                      f"levels and too few speeds to make a sweep of their own")
+    if levels.speed_trend:
+        parts.append(f"{levels.speed_trend} run(s) whose friction trends while their speed moves too, by under "
+                     f"{TREND_NOT_SPEED:g} times its share: a creep, a stroke of a sinusoidal force, not a steady run "
+                     f"— or friction moving along the run for another reason while the speed moves a little (a "
+                     f"drift; a force along the travel left in the applied one, a spring's: `diagnose` says one)")
     if parts:
         said = "; left out: " + " and ".join(parts)
     if levels.trended is not None:
@@ -281,7 +304,7 @@ def with_fastest_levels(prep: Prepared, levels: Levels, friction_sign: str = "au
         more = constant_velocity_levels(narrow)
         beyond = beyond_levels(more.velocity, levels)
         if beyond.any():
-            added = more.kept(beyond, opposing=0, creep=0, trend_alone=0)
+            added = more.kept(beyond, opposing=0, opposing_strokes=0, creep=0, trend_alone=0, speed_trend=0)
             levels = Levels.joined([levels, added])
             taken.append((int(beyond.sum()), f"at a window of {w} (|v| {speeds_said(added.velocity)})"))
         left = fast_runs(narrow, levels, cut_short=False) or runs_under_window(narrow, levels)
@@ -357,7 +380,8 @@ def with_sliding_levels(prep: Prepared, levels: Levels) -> tuple[Levels, str]:
     words = " and ".join(held_at(s) for s in taken)
     # (the runs left out are the constant-velocity ones' alone; the sliding has no times)
     joined = Levels.joined([levels.kept(~mine), extra.kept(new)])
-    return (dataclasses.replace(joined, opposing=levels.opposing, creep=levels.creep, time=None),
+    return (dataclasses.replace(joined, opposing=levels.opposing, opposing_strokes=levels.opposing_strokes,
+                                creep=levels.creep, speed_trend=levels.speed_trend, time=None),
             f"{words}: S(v) from {int(new.sum())} speed level(s) of steady gross sliding instead{of_force} (past "
             f"{GROSS_SLIDING:g} × {z_range:.3g} of travel after each reversal, the median range over which the "
             f"friction crossed to sliding; the velocity changing by under 5 % over that range; binned in log|v|)")
@@ -853,6 +877,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
                         widened[path] = scale
             notes.extend(f"{side}: {m}" for m in dec.fit.notes)
             notes.append(f"{side} side: {dec.model}")
+            notes.extend(filter(None, [form_untested(side, dec)]))
             if scale > 1.0:
                 # (said after the refinement, which may replace these σ by its own: below)
                 misfit_notes[side] = (scale, f"{side} side: this form misfits the levels (χ² = {dec.fit.chi2:.3g} for "
@@ -868,7 +893,7 @@ def fit_recordings(recordings: list[Recording], *, base: FrictionParams | None =
     # the refinement starts from this fit's σ (a parameter it cannot move keeps them)
     res = FitResult(p.replace(uncertainty=unc), stribeck_fit, tfit, levels, n_br, notes, datasets,
                     {pr.source: pr.th for pr in preps}, held, decisions, branches_tried=tried,
-                    warnings=force_like_friction(recordings, inertia_notes) + over_loads(preps))
+                    warnings=force_like_friction(recordings, inertia_notes) + over_loads(preps) + springs_in(preps))
     if refine:
         try:
             from .refine import refine_fit
@@ -1073,6 +1098,43 @@ def force_like_friction(recordings: list[Recording], inertia_notes: list) -> lis
                 "effect)" if like.load_span is not None else "")
         out.append(f"{r.source}: column {col!r} was read as the applied force, but {found} (I·ẍ, eq. (8)) — "
                    f"measured friction carries none: {NAME_IT_FRICTION}, and fit again{load}")
+    return out
+
+
+def springs_in(preps: list[Prepared]) -> list[str]:
+    """One line per recording whose column rises along the travel whichever way the motion
+    goes (``diagnose.travel_spring`` on the column itself, in its steady runs: at a steady speed
+    S(v) is one value, which each run's offset takes, so no model enters): a spring, a gas
+    spring's counterbalance, gravity near one angle, which the model has no term for. Its levels
+    then sit wherever each run lies on the spring (a vertical axis made apart, a 3 kN/m gas
+    spring over 260 mm beside 120 N of friction: F_c⁺ 89.6 ± 20 N, levels from 0.17 to 369 N,
+    a presliding range of 110 mm, and nothing said)."""
+    from .diagnose import AlongTravel, travel_spring
+
+    out = []
+    for pr in preps:
+        col = pr.friction if pr.friction is not None else pr.force
+        if col is None:
+            continue
+        steady = np.zeros(len(col), dtype=bool)
+        for a, s0, e0 in steady_runs(pr):
+            steady[a + s0:a + e0] = True
+        acc = np.zeros_like(pr.velocity)
+        for a, b in pr.chunks:
+            if b - a >= 3:
+                acc[a:b] = np.gradient(pr.velocity[a:b], pr.rec.time[a:b])
+        ts = travel_spring(AlongTravel(pr.rec.position, pr.velocity, pr.th.v_floor, acc, pr.rec.time), col,
+                           steady & pr.usable)
+        if ts is None or not ts.shown:
+            continue
+        what = "friction" if pr.friction is not None else "force"
+        fu, pu = pr.rec.units.get(what, ""), pr.rec.units.get("position", "")
+        out.append(f"{pr.source}: the {'friction' if pr.friction is not None else 'applied force'} rises by "
+                   f"{ts.rate:.4g} ± {ts.sd:.2g} {fu}/{pu} along the travel whichever way the motion goes "
+                   f"({abs(ts.rate) * ts.span:.3g} {fu} over the {ts.span:.3g} {pu} of its steady runs, beside a "
+                   f"median |{what}| of {np.median(np.abs(col[steady])):.3g} {fu} there): a spring, a counterbalance, gravity "
+                   f"near one angle, which the model has no term for — S(v)'s levels sit wherever each run lies on "
+                   f"it; write the column less it (`diagnose` reads it again beside the model)")
     return out
 
 

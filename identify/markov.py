@@ -37,19 +37,24 @@ class Levels:
     variance: np.ndarray
     count: np.ndarray
     opposing: int = 0  # runs whose friction opposes their velocity (``segment.constant_velocity_levels``)
+    opposing_strokes: int = 0  # … of them, over a tenth of the travel or more (no presliding spring's give-back)
     creep: int = 0  # runs of presliding creep (``segment.sliding_only``)
     trend_alone: int = 0  # trending runs on a side with under 3 settled levels and no sweep of their own
+    # runs whose friction trended with their speed, under TREND_NOT_SPEED times its relative change
+    # (``segment.constant_velocity_levels``): a creep, a stroke of a sinusoidal force
+    speed_trend: int = 0
     time: np.ndarray | None = None  # each level's mean time (one recording's clock), where known
     # per level: its run's friction trended (``segment.constant_velocity_levels``), and its
     # variance holds that trend; None where none did
     trended: np.ndarray | None = None
 
     def kept(self, keep: np.ndarray, **kw) -> "Levels":
-        """The levels ``keep`` selects, with their times and marks; ``kw`` sets ``opposing``/``creep``."""
+        """The levels ``keep`` selects, with their times and marks; ``kw`` sets the counts of runs left out."""
         return Levels(*(a[keep] for a in (self.velocity, self.friction, self.variance, self.count)),
                       time=None if self.time is None else self.time[keep],
                       trended=None if self.trended is None or not self.trended[keep].any() else self.trended[keep],
-                      **{"opposing": self.opposing, "creep": self.creep, "trend_alone": self.trend_alone, **kw})
+                      **{"opposing": self.opposing, "opposing_strokes": self.opposing_strokes, "creep": self.creep,
+                         "trend_alone": self.trend_alone, "speed_trend": self.speed_trend, **kw})
 
     @property
     def is_trended(self) -> np.ndarray:
@@ -73,7 +78,8 @@ class Levels:
         arrays = (np.concatenate([getattr(p, k) for p in parts]) for k in ("velocity", "friction", "variance", "count"))
         marks = [p.is_trended for p in parts]
         return cls(*arrays, opposing=sum(p.opposing for p in parts), creep=sum(p.creep for p in parts),
-                   trend_alone=sum(p.trend_alone for p in parts),
+                   opposing_strokes=sum(p.opposing_strokes for p in parts),
+                   trend_alone=sum(p.trend_alone for p in parts), speed_trend=sum(p.speed_trend for p in parts),
                    time=None if any(p.time is None for p in parts) else np.concatenate([p.time for p in parts]),
                    trended=np.concatenate(marks) if any(m.any() for m in marks) else None)
 

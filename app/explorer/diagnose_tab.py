@@ -16,7 +16,7 @@ from .context import Context, Proposal, plot_config
 from .data_tab import without_cli_hints
 from .jobs import Cancelled, JobThread
 
-MAX_FIGURES = 7  # steps, signal, up to three named effects, a force along the travel, cross-validation
+MAX_FIGURES = 8  # steps, signal, up to three named effects, a force along the travel periodic and in proportion, cross-validation
 
 
 class DiagnoseTab:
@@ -31,8 +31,8 @@ class DiagnoseTab:
                                              "for the physical effect the model misses, adds it and refits. The "
                                              "result is a proposal you accept or discard.")
             # the figures of the HTML report (plots.diagnosis_report_figures): the gap step by step,
-            # the compared signal, one residual per named effect, a force along the travel where one is
-            # seen, the cross-validation evidence
+            # the compared signal, one residual per named effect, a force along the travel (periodic, in
+            # proportion to it) where one is seen, the cross-validation evidence
             self.gui_plots = [gui.add_plotly(plots.hysteresis_figure([]), aspect=0.55, config=plot_config(f"diagnosis_{i}"),
                                              visible=False) for i in range(MAX_FIGURES)]
             self.gui_csv = gui.add_button("Save plot data (CSV)", visible=False, hint="the figures shown, one file")

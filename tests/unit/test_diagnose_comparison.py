@@ -1594,3 +1594,62 @@ def test_a_velocity_column_of_the_other_sign_does_not_turn_a_correct_force_round
                     units={"time": "s", "position": "m", "force": "N", "velocity": "m/s"}, source="turned_v.csv")
     est, why, _ = recording_inertia(rec)
     assert est is not None and abs(est.value - 5.0) < 3 * est.stderr + 0.5, (est, why)
+
+
+# ---------------------------------------------------------------- a force in proportion to the travel
+def _strokes_with(rate_keeping, rate_following, *, seed):
+    """Strokes over ±10 mm at 2–40 mm/s, each speed rising 30 % along its stroke (a positioner
+    lagging its ramp), and a residual holding: k·x keeping its sign (a spring taken off the force
+    at a wrong rate), a slope following the motion's sign, S(v)'s slope off by 2 kN·s/m, an
+    inertia off by 2 kg, each run's own offset and white noise."""
+    from types import SimpleNamespace
+
+    rng = np.random.default_rng(seed)
+    rate = 1000.0
+    v_runs = []
+    for speed in (0.002, 0.005, 0.01, 0.02, 0.04):
+        for sign in (1.0, -1.0):
+            n = int(0.02 / speed * rate)
+            prof = speed * np.linspace(0.87, 1.13, n)
+            v_runs += [sign * prof * 0.02 / (prof.sum() / rate), np.zeros(200)]
+    v = np.concatenate(v_runs)
+    x = np.cumsum(v) / rate - 0.01
+    t = np.arange(len(x)) / rate
+    acc = np.gradient(v, t)
+    moving = np.abs(v) > 0
+    run = np.cumsum(np.r_[True, np.diff(np.sign(v)) != 0])
+    offset = rng.normal(0.0, 5.0, run.max() + 1)[run]
+    resid = (rate_keeping * x + rate_following * np.sign(v) * x + 2000.0 * v - 2.0 * acc
+             + offset + rng.normal(0.0, 1.0, len(x)))
+    cmp_ = SimpleNamespace(space="friction", velocity=v, v_rest=5e-4, path=x, time=t, windows=[], acceleration=acc,
+                           filtered=lambda f: f)
+    return cmp_, resid, moving
+
+
+def test_a_spring_along_the_travel_is_read_whichever_way_the_motion_goes():
+    """A spring rate 2 kN/m off, left in friction taken from an applied force, beside friction's
+    own slopes (a slope following the motion's sign, S(v) misfit where the speed varies along a
+    stroke, an inertia misfit): read within 3 σ at the slow and the fast half alike, and said."""
+    from leuven_friction.identify.diagnose import travel_spring
+
+    for seed in range(5):
+        cmp_, resid, mask = _strokes_with(2000.0, 500.0, seed=seed)
+        ts = travel_spring(cmp_, resid, mask)
+        assert ts is not None and ts.shown, ts
+        # within 3 σ and 2 %: read without S(v)'s and the inertia's slopes beside it, the rate is 7.6 % high
+        assert abs(ts.rate - 2000.0) < min(3 * ts.sd, 0.02 * 2000.0), (ts.rate, ts.sd)
+        assert abs(ts.following - 500.0) < 0.05 * 500.0, ts.following
+        (slow, s_sd), (fast, f_sd) = ts.halves
+        assert abs(slow - 2000.0) < 3 * s_sd and abs(fast - 2000.0) < 3 * f_sd, ts.halves
+        assert abs(ts.span - 0.02) < 1e-3 and ts.gain > 0.5
+
+
+def test_a_slope_that_follows_the_motions_sign_is_no_force_along_the_travel():
+    """Friction rising along the travel (its sign the motion's), S(v) misfit and an inertia
+    misfit, no spring: nothing said, over seeds."""
+    from leuven_friction.identify.diagnose import travel_spring
+
+    for seed in range(5):
+        cmp_, resid, mask = _strokes_with(0.0, 500.0, seed=seed)
+        ts = travel_spring(cmp_, resid, mask)
+        assert ts is not None and not ts.shown and abs(ts.rate) < 5 * ts.sd, ts

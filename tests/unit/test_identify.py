@@ -492,3 +492,20 @@ def test_the_sigma_of_a_form_that_misfits_its_levels_covers_another_design_of_th
     F = 8e-3 + 3e-3 * np.exp(-(v / 0.1) ** 1.2) + 2e-3 * v + rng.normal(0, sd, len(v))
     fit = fit_side_honest(Levels(v, F, np.full(len(v), sd**2), np.full(len(v), 500.0)), 1).fit
     assert misfit_scale(fit) == 1.0, (fit.chi2, fit.dof)
+
+
+def test_a_side_with_as_many_levels_as_its_form_has_parameters_is_said_untested():
+    # two levels a side, Coulomb + viscous through them: χ² for 0 degrees of freedom tests
+    # nothing, and the note says so; with four levels on a straight line it does not
+    from leuven_friction.identify.fit import form_untested
+    from leuven_friction.identify.markov import fit_side_honest
+
+    rng = np.random.default_rng(3)
+    for v in (np.array([0.024, 0.040]), np.geomspace(0.005, 0.04, 4)):
+        F = 300.0 + 2000.0 * v + rng.normal(0, 1.0, len(v))
+        dec = fit_side_honest(Levels(v, F, np.full(len(v), 1.0), np.full(len(v), 500.0)), 1)
+        said = form_untested("positive", dec)
+        if len(v) == 2:
+            assert dec.fit.dof == 0 and said is not None and "0 degrees of freedom" in said, (dec.model, said)
+        else:
+            assert dec.fit.dof > 0 and said is None, (dec.model, dec.fit.dof)
