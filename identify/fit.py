@@ -1129,7 +1129,7 @@ def springs_in(preps: list[Prepared]) -> list[str]:
             continue
         what = "friction" if pr.friction is not None else "force"
         fu, pu = pr.rec.units.get(what, ""), pr.rec.units.get("position", "")
-        out.append(f"{pr.source}: the {'friction' if pr.friction is not None else 'applied force'} rises by "
+        out.append(f"{pr.source}: the {'friction' if what == 'friction' else 'applied force'} rises by "
                    f"{ts.rate:.4g} ± {ts.sd:.2g} {fu}/{pu} along the travel whichever way the motion goes "
                    f"({abs(ts.rate) * ts.span:.3g} {fu} over the {ts.span:.3g} {pu} of its steady runs, beside a "
                    f"median |{what}| of {np.median(np.abs(col[steady])):.3g} {fu} there): a spring, a counterbalance, gravity "
